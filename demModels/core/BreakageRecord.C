@@ -1,0 +1,384 @@
+#include "BreakageRecord.H"
+
+#include "AtomicFile.H"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <tuple>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+constexpr const char* groupName = "breakage";
+constexpr const char* familyCodes = "0=ice,1=freeze";
+constexpr const char* modeCodes = "1=tension,2=shear,3=twist,4=bending";
+constexpr const char* units = "time:s,x:m,y:m,z:m";
+
+bool validFamily(int code)
+{
+    return code >= 0 && code < nBondFamilies;
+}
+
+bool validBreakMode(int code)
+{
+    return code >= static_cast<int>(BreakMode::tension)
+        && code <= static_cast<int>(BreakMode::bending);
+}
+
+
+//- Owns one HDF5 identifier and closes it with the matching H5?close.
+class H5Id
+{
+public:
+    using Closer = herr_t (*)(hid_t);
+
+    H5Id(hid_t id, Closer closer, const std::string& context)
+    :
+        id_(id),
+        closer_(closer)
+    {
+        if (id_ < 0)
+        {
+            throw std::runtime_error(context);
+        }
+    }
+
+    H5Id(const H5Id&) = delete;
+    H5Id& operator=(const H5Id&) = delete;
+
+    ~H5Id()
+    {
+        closer_(id_);
+    }
+
+    hid_t get() const { return id_; }
+
+private:
+    hid_t id_;
+    Closer closer_;
+};
+
+
+//- Silences HDF5's own error printing; failures are reported by our exceptions.
+class QuietHdf5Errors
+{
+public:
+    QuietHdf5Errors()
+    {
+        H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    }
+
+    ~QuietHdf5Errors()
+    {
+        H5Eset_auto2(H5E_DEFAULT, function_, data_);
+    }
+
+private:
+    H5E_auto2_t function_ = nullptr;
+    void* data_ = nullptr;
+};
+
+
+std::string failure(const std::string& path, const std::string& what)
+{
+    return "HDF5 breakage file '" + path + "': " + what;
+}
+
+
+void writeDataset
+(
+    hid_t group,
+    const char* name,
+    hid_t fileType,
+    hid_t memoryType,
+    const void* data,
+    hsize_t n,
+    const std::string& path
+)
+{
+    H5Id space(H5Screate_simple(1, &n, nullptr), H5Sclose,
+               failure(path, std::string("cannot create dataspace for ") + name));
+    H5Id dataset
+    (
+        H5Dcreate2(group, name, fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Dclose,
+        failure(path, std::string("cannot create dataset ") + name)
+    );
+    if (n > 0
+     && H5Dwrite(dataset.get(), memoryType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    {
+        throw std::runtime_error(failure(path, std::string("cannot write dataset ") + name));
+    }
+}
+
+
+void writeStringAttribute
+(
+    hid_t object,
+    const char* name,
+    const std::string& value,
+    const std::string& path
+)
+{
+    const std::string context = failure(path, std::string("cannot write attribute ") + name);
+    H5Id type(H5Tcopy(H5T_C_S1), H5Tclose, context);
+    if (H5Tset_size(type.get(), value.size()) < 0
+     || H5Tset_strpad(type.get(), H5T_STR_NULLPAD) < 0)
+    {
+        throw std::runtime_error(context);
+    }
+    H5Id space(H5Screate(H5S_SCALAR), H5Sclose, context);
+    H5Id attribute
+    (
+        H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose,
+        context
+    );
+    if (H5Awrite(attribute.get(), type.get(), value.data()) < 0)
+    {
+        throw std::runtime_error(context);
+    }
+}
+
+
+void writeCountAttribute(hid_t object, std::int64_t count, const std::string& path)
+{
+    const std::string context = failure(path, "cannot write attribute count");
+    H5Id space(H5Screate(H5S_SCALAR), H5Sclose, context);
+    H5Id attribute
+    (
+        H5Acreate2(object, "count", H5T_STD_I64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose,
+        context
+    );
+    if (H5Awrite(attribute.get(), H5T_NATIVE_INT64, &count) < 0)
+    {
+        throw std::runtime_error(context);
+    }
+}
+
+
+template<class T>
+std::vector<T> readDataset
+(
+    hid_t group,
+    const char* name,
+    hid_t memoryType,
+    const std::string& path
+)
+{
+    const std::string context = failure(path, std::string("cannot read dataset ") + name);
+    H5Id dataset(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, context);
+    H5Id space(H5Dget_space(dataset.get()), H5Sclose, context);
+    if (H5Sget_simple_extent_ndims(space.get()) != 1)
+    {
+        throw std::runtime_error(context + " (not one-dimensional)");
+    }
+    hsize_t n = 0;
+    H5Sget_simple_extent_dims(space.get(), &n, nullptr);
+    std::vector<T> values(n);
+    if (n > 0
+     && H5Dread(dataset.get(), memoryType, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+    {
+        throw std::runtime_error(context);
+    }
+    return values;
+}
+
+
+void writeEvents
+(
+    const std::vector<BreakEvent>& events,
+    const std::string& tempPath,
+    const std::string& path
+)
+{
+    const std::size_t n = events.size();
+    std::vector<double> time(n), x(n), y(n), z(n);
+    std::vector<std::int64_t> tagA(n), tagB(n);
+    std::vector<std::int32_t> family(n), mode(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const BreakEvent& e = events[i];
+        time[i] = e.time;
+        x[i] = e.position.x();
+        y[i] = e.position.y();
+        z[i] = e.position.z();
+        tagA[i] = e.tagA;
+        tagB[i] = e.tagB;
+        family[i] = static_cast<std::int32_t>(e.family);
+        mode[i] = static_cast<std::int32_t>(e.mode);
+    }
+
+    H5Id file(H5Fcreate(tempPath.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+              H5Fclose, failure(path, "cannot create file"));
+    H5Id group(H5Gcreate2(file.get(), groupName, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Gclose, failure(path, "cannot create group /breakage"));
+    const hid_t g = group.get();
+    writeDataset(g, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, time.data(), n, path);
+    writeDataset(g, "x", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, x.data(), n, path);
+    writeDataset(g, "y", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, y.data(), n, path);
+    writeDataset(g, "z", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, z.data(), n, path);
+    writeDataset(g, "tagA", H5T_STD_I64LE, H5T_NATIVE_INT64, tagA.data(), n, path);
+    writeDataset(g, "tagB", H5T_STD_I64LE, H5T_NATIVE_INT64, tagB.data(), n, path);
+    writeDataset(g, "family", H5T_STD_I32LE, H5T_NATIVE_INT32, family.data(), n, path);
+    writeDataset(g, "mode", H5T_STD_I32LE, H5T_NATIVE_INT32, mode.data(), n, path);
+    writeStringAttribute(g, "familyCodes", familyCodes, path);
+    writeStringAttribute(g, "modeCodes", modeCodes, path);
+    writeStringAttribute(g, "units", units, path);
+    writeCountAttribute(g, static_cast<std::int64_t>(n), path);
+}
+
+} // namespace
+
+
+bool operator==(const BreakEvent& a, const BreakEvent& b)
+{
+    return a.time == b.time && a.position == b.position && a.tagA == b.tagA
+        && a.tagB == b.tagB && a.family == b.family && a.mode == b.mode;
+}
+
+
+bool operator!=(const BreakEvent& a, const BreakEvent& b)
+{
+    return !(a == b);
+}
+
+
+bool eventOrder(const BreakEvent& a, const BreakEvent& b)
+{
+    const auto key = [](const BreakEvent& e)
+    {
+        return std::make_tuple(e.time, e.tagA, e.tagB, static_cast<int>(e.family),
+                               static_cast<int>(e.mode));
+    };
+    return key(a) < key(b);
+}
+
+
+void BreakageRecord::append(const BreakEvent& event)
+{
+    if (!validFamily(static_cast<int>(event.family)))
+    {
+        throw std::invalid_argument("BreakageRecord: unknown bond family code "
+                                    + std::to_string(static_cast<int>(event.family)));
+    }
+    if (!validBreakMode(static_cast<int>(event.mode)))
+    {
+        throw std::invalid_argument("BreakageRecord: a break event needs a break mode "
+                                    "(tension, shear, twist or bending), got code "
+                                    + std::to_string(static_cast<int>(event.mode)));
+    }
+    events_.push_back(event);
+}
+
+
+void BreakageRecord::append(const BreakageRecord& other)
+{
+    events_.insert(events_.end(), other.events_.begin(), other.events_.end());
+}
+
+
+std::size_t BreakageRecord::count(BreakMode mode) const
+{
+    return std::count_if(events_.begin(), events_.end(),
+                         [mode](const BreakEvent& e) { return e.mode == mode; });
+}
+
+
+std::size_t BreakageRecord::count(BondFamily family) const
+{
+    return std::count_if(events_.begin(), events_.end(),
+                         [family](const BreakEvent& e) { return e.family == family; });
+}
+
+
+std::size_t BreakageRecord::count(BondFamily family, BreakMode mode) const
+{
+    return std::count_if
+    (
+        events_.begin(), events_.end(),
+        [family, mode](const BreakEvent& e) { return e.family == family && e.mode == mode; }
+    );
+}
+
+
+void BreakageRecord::sort()
+{
+    std::sort(events_.begin(), events_.end(), eventOrder);
+}
+
+
+void BreakageRecord::writeHdf5(const std::string& path) const
+{
+    std::vector<BreakEvent> sorted(events_);
+    std::sort(sorted.begin(), sorted.end(), eventOrder);
+    QuietHdf5Errors quiet;
+    writeAtomically
+    (
+        path,
+        [&](const std::string& tempPath) { writeEvents(sorted, tempPath, path); }
+    );
+}
+
+
+BreakageRecord BreakageRecord::readHdf5(const std::string& path)
+{
+    QuietHdf5Errors quiet;
+    H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+              failure(path, "cannot open file"));
+    H5Id group(H5Gopen2(file.get(), groupName, H5P_DEFAULT), H5Gclose,
+               failure(path, "no group /breakage"));
+    const hid_t g = group.get();
+    const auto time = readDataset<double>(g, "time", H5T_NATIVE_DOUBLE, path);
+    const auto x = readDataset<double>(g, "x", H5T_NATIVE_DOUBLE, path);
+    const auto y = readDataset<double>(g, "y", H5T_NATIVE_DOUBLE, path);
+    const auto z = readDataset<double>(g, "z", H5T_NATIVE_DOUBLE, path);
+    const auto tagA = readDataset<std::int64_t>(g, "tagA", H5T_NATIVE_INT64, path);
+    const auto tagB = readDataset<std::int64_t>(g, "tagB", H5T_NATIVE_INT64, path);
+    const auto family = readDataset<std::int32_t>(g, "family", H5T_NATIVE_INT32, path);
+    const auto mode = readDataset<std::int32_t>(g, "mode", H5T_NATIVE_INT32, path);
+
+    const std::size_t n = time.size();
+    for (std::size_t size : {x.size(), y.size(), z.size(), tagA.size(), tagB.size(),
+                             family.size(), mode.size()})
+    {
+        if (size != n)
+        {
+            throw std::runtime_error(failure(path, "datasets of different lengths"));
+        }
+    }
+
+    BreakageRecord record;
+    record.events_.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        if (!validFamily(family[i]) || !validBreakMode(mode[i]))
+        {
+            throw std::runtime_error
+            (
+                failure(path, "event " + std::to_string(i) + " has unknown family code "
+                        + std::to_string(family[i]) + " or mode code "
+                        + std::to_string(mode[i]))
+            );
+        }
+        BreakEvent e;
+        e.time = time[i];
+        e.position = Vec3(x[i], y[i], z[i]);
+        e.tagA = tagA[i];
+        e.tagB = tagB[i];
+        e.family = static_cast<BondFamily>(family[i]);
+        e.mode = static_cast<BreakMode>(mode[i]);
+        record.events_.push_back(e);
+    }
+    return record;
+}
+
+} // namespace iceDEM
