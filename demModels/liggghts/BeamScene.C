@@ -1,0 +1,620 @@
+#include "BeamScene.H"
+
+#include "AtomicFile.H"
+#include "Dictionary.H"
+#include "ForceCurveAnalysis.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+#include "RandomPacking.H"
+#include "StlWriter.H"
+#include "TimeStep.H"
+
+#include "atom.h"
+#include "fix.h"
+#include "lammps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+constexpr int mobileType = 1;
+constexpr int fixedType = 2;
+
+std::string number(double v)
+{
+    std::ostringstream s;
+    s << std::setprecision(10) << v;
+    return s.str();
+}
+
+std::string jsonNumber(double v)
+{
+    return std::isfinite(v) ? number(v) : "null";
+}
+
+std::string formatDuration(double seconds)
+{
+    std::ostringstream s;
+    const long total = static_cast<long>(std::max(0.0, seconds));
+    if (total >= 3600) s << total / 3600 << " h ";
+    if (total >= 60) s << (total % 3600) / 60 << " min ";
+    s << total % 60 << " s";
+    return s.str();
+}
+
+} // namespace
+
+
+BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
+{
+    BeamSceneOptions o;
+    const std::string usage =
+        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S]";
+    for (int k = 1; k < argc; ++k)
+    {
+        const std::string arg = argv[k];
+        auto value = [&]() -> std::string
+        {
+            if (k + 1 >= argc)
+            {
+                throw InputError("command line", arg, "needs a value; " + usage);
+            }
+            return argv[++k];
+        };
+        try
+        {
+            if (arg == "-case") o.caseDir = value();
+            else if (arg == "-particles") o.particles = std::stoi(value());
+            else if (arg == "-platenSpeed") o.platenSpeed = std::stod(value());
+            else if (arg == "-help" || arg == "--help")
+            {
+                std::cout << usage << std::endl;
+                std::exit(0);
+            }
+            else throw InputError("command line", arg, "unknown option; " + usage);
+        }
+        catch (const std::logic_error&)
+        {
+            throw InputError("command line", arg, "'" + std::string(argv[k]) + "' is not a number");
+        }
+    }
+    if (o.particles < 0 || o.platenSpeed < 0.0)
+    {
+        throw InputError("command line", "-particles/-platenSpeed", "must be positive");
+    }
+    return o;
+}
+
+
+BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const BeamSceneOptions& options)
+{
+    BeamSceneSettings s;
+    const Dictionary props = Dictionary::readFile(caseDir + "/constant/beamProperties");
+    props.checkKeys({"beam", "packing", "platen"});
+
+    auto positive = [](const Dictionary& d, const std::string& key, double def, bool required)
+    {
+        const double v = required ? d.getScalar(key) : d.getScalarOrDefault(key, def);
+        if (!(v > 0.0))
+        {
+            d.fail(key, number(v) + " is not allowed; expected a positive number");
+        }
+        return v;
+    };
+
+    const Dictionary& beam = props.subDict("beam");
+    beam.checkKeys({"length", "width", "thickness", "padLength"});
+    s.length = positive(beam, "length", 0, true);
+    s.width = positive(beam, "width", 0, true);
+    s.thickness = positive(beam, "thickness", 0, true);
+    s.padLength = positive(beam, "padLength", 0, true);
+    if (2.0 * s.padLength >= s.length)
+    {
+        beam.fail("padLength", "the two end pads (" + number(2 * s.padLength)
+                  + " m) leave no free span in a beam " + number(s.length) + " m long");
+    }
+
+    const Dictionary& packing = props.subDict("packing");
+    packing.checkKeys({"particles", "radiusSpread", "solidFraction", "seed"});
+    s.particles = options.particles > 0 ? options.particles : packing.getLabel("particles");
+    if (s.particles < 20)
+    {
+        packing.fail("particles", "at least 20 particles are needed");
+    }
+    s.radiusSpread = packing.getScalarOrDefault("radiusSpread", 0.0);
+    if (s.radiusSpread < 0.0 || s.radiusSpread >= 0.9)
+    {
+        packing.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
+    }
+    s.solidFraction = packing.getScalarOrDefault("solidFraction", 0.6);
+    if (s.solidFraction <= 0.0 || s.solidFraction >= 0.74)
+    {
+        packing.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+    }
+    s.seed = static_cast<unsigned>(packing.getLabelOrDefault("seed", 1));
+
+    const Dictionary& platen = props.subDict("platen");
+    platen.checkKeys({"diameter", "speed", "initialGap"});
+    s.platenDiameter = positive(platen, "diameter", 0, true);
+    s.platenSpeed = options.platenSpeed > 0.0 ? options.platenSpeed : positive(platen, "speed", 0, true);
+    s.initialGap = platen.getScalarOrDefault("initialGap", 0.002);
+    if (s.initialGap < 0.0)
+    {
+        platen.fail("initialGap", "must not be negative");
+    }
+
+    const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
+    control.checkKeys
+    ({
+        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "sampleInterval", "writeInterval"
+    });
+    s.maxTravel = positive(control, "maxTravel", 0, true);
+    s.stopAfterHalfLoad = control.getBoolOrDefault("stopAfterHalfLoad", true);
+    s.travelAfterHalfLoad = control.getScalarOrDefault("travelAfterHalfLoad", 0.005);
+    s.sampleInterval = positive(control, "sampleInterval", 2e-4, false);
+    s.writeInterval = positive(control, "writeInterval", 0.01, false);
+    if (s.sampleInterval > s.writeInterval)
+    {
+        control.fail("sampleInterval", "must not exceed writeInterval");
+    }
+    return s;
+}
+
+
+BeamScene::BeamScene(MPI_Comm comm, const BeamSceneOptions& options)
+:
+    comm_(comm),
+    options_(options),
+    curve_({"time", "travel", "force", "brokenBonds", "kineticEnergy", "bondEnergy"})
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+    ice_ = IceProperties::read(path("constant/iceProperties"));
+    settings_ = BeamSceneSettings::read(options_.caseDir, options_);
+}
+
+
+BeamScene::~BeamScene() = default;
+
+
+std::string BeamScene::path(const std::string& relative) const
+{
+    return options_.caseDir + "/" + relative;
+}
+
+
+void BeamScene::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+void BeamScene::buildParticles()
+{
+    // Every rank builds the same packing (a pure function of its inputs).
+    RandomPackingSpec spec;
+    spec.lo = Vec3::Zero();
+    spec.hi = Vec3(settings_.length, settings_.width, settings_.thickness);
+    spec.particleCount = settings_.particles;
+    spec.radiusSpread = settings_.radiusSpread;
+    spec.targetSolidFraction = settings_.solidFraction;
+    spec.seed = settings_.seed;
+    RandomPackingStats stats;
+    particles_ = buildRandomPacking(spec, stats);
+    markFixedEnds(particles_, 0, settings_.padLength, spec.lo, spec.hi);
+
+    std::ostringstream msg;
+    msg << "Packing: " << particles_.size() << " particles, radius " << stats.minRadius << " - "
+        << stats.maxRadius << " m, solid fraction " << stats.solidFraction
+        << ", largest overlap " << stats.maxOverlap << " of the mean radius";
+    log(msg.str());
+
+    BondBuilder builder(ice_);
+    bondPairs_ = builder.build(particles_);
+    bondStats_ = builder.statistics();
+    log("Bonds: " + bondStats_.summary());
+
+    const double meanDiameter = 2.0 * stats.meanRadius;
+    contactStiffness_ = M_PI * ice_.material.youngsModulus * meanDiameter / 4.0;
+
+    const TimeStepLimits limits = timeStepLimits(ice_, stats.minRadius, bondStats_.maxBondsPerParticle);
+    dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
+    std::ostringstream step;
+    step << "Time step " << dt_ << " s (limit " << limits.limit << " s; stiffest spring: "
+         << limits.stiffestSpringName << ", critical " << limits.stiffestSpring << " s)";
+    log(step.str());
+}
+
+
+void BeamScene::writeLiggghtsInputs() const
+{
+    if (rank_ != 0)
+    {
+        return;
+    }
+    const double margin = 0.05 + settings_.platenDiameter;
+    writeStreamAtomically(path("DEM/packing.data"), [&](std::ostream& out)
+    {
+        out << "LIGGGHTS data file: level-ice beam packing written by iceBeamDEM\n\n"
+            << particles_.size() << " atoms\n2 atom types\n\n"
+            << std::setprecision(17)
+            << -margin << " " << settings_.length + margin << " xlo xhi\n"
+            << -settings_.initialGap - 2.0 * margin << " " << settings_.width + 3.0 + margin
+            << " ylo yhi\n"
+            << -margin << " " << settings_.thickness + margin << " zlo zhi\n\nAtoms\n\n";
+        for (std::size_t k = 0; k < particles_.size(); ++k)
+        {
+            const ParticleSpec& p = particles_[k];
+            out << k + 1 << " " << (p.fixed ? fixedType : mobileType) << " " << 2.0 * p.radius << " "
+                << ice_.material.density << " " << p.position.x() << " " << p.position.y() << " "
+                << p.position.z() << "\n";
+        }
+    });
+    const double radius = 0.5 * settings_.platenDiameter;
+    writeCylinderStl
+    (
+        path("DEM/platen.stl"),
+        Vec3(0.5 * settings_.length, -radius - settings_.initialGap, -0.02),
+        Vec3(0.0, 0.0, 1.0),
+        radius,
+        settings_.thickness + 0.04,
+        48,
+        "platen"
+    );
+}
+
+
+void BeamScene::startLiggghts()
+{
+    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    LiggghtsInstance& lmp = *lmp_;
+
+    double maxRadius = 0.0;
+    double minMass = HUGE_VAL;
+    for (const ParticleSpec& p : particles_)
+    {
+        maxRadius = std::max(maxRadius, p.radius);
+        minMass = std::min(minMass, ice_.material.density * 4.0 / 3.0 * M_PI * std::pow(p.radius, 3));
+    }
+    const double maxDistFactor =
+        std::max(ice_.family(BondFamily::ice).distFactor, ice_.family(BondFamily::freeze).distFactor);
+    const double skin = 0.2 * maxRadius;
+    // Ghosts must hold every bonded partner, with room for the bond to stretch.
+    const double ghostCutoff = 1.1 * maxDistFactor * 2.0 * maxRadius + skin;
+
+    const double kt = contactStiffness_ / (2.0 * (1.0 + ice_.material.poissonsRatio));
+    double gn = 0.0, gt = 0.0;
+    if (ice_.damping.model == DampingModel::viscous)
+    {
+        const double reducedMass = 0.5 * minMass;
+        gn = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * contactStiffness_);
+        gt = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * kt);
+    }
+
+    lmp.setVariable("dataFile", path("DEM/packing.data"));
+    lmp.setVariable("platenStl", path("DEM/platen.stl"));
+    lmp.setVariable("ghostCutoff", ghostCutoff);
+    lmp.setVariable("neighbourSkin", skin);
+    lmp.setVariable("kn", contactStiffness_);
+    lmp.setVariable("kt", kt);
+    lmp.setVariable("gn", gn);
+    lmp.setVariable("gt", gt);
+    lmp.setVariable("mu", ice_.material.frictionCoefficient);
+    lmp.setVariable("muR", ice_.material.rollingFrictionCoefficient);
+    lmp.setVariable("dt", dt_);
+    lmp.setVariable("platenSpeed", settings_.platenSpeed);
+
+    const std::string script = path("DEM/in.levelIceBeam");
+    if (!std::filesystem::exists(script))
+    {
+        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
+    }
+    lmp.command("include " + script);
+
+    bonds_ = std::make_unique<IceBondForces>(lmp, ice_, contactStiffness_);
+    bonds_->createBonds(particles_, bondPairs_);
+    lmp.command("fix iceBondForces all external pf/callback 1 1");
+    bonds_->attach("iceBondForces");
+}
+
+
+double BeamScene::platenForce() const
+{
+    // Force of the particles on the platen; they push it back along -y.
+    return -lmp_->fix("platen").compute_vector(1);
+}
+
+
+double BeamScene::localKineticEnergy() const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double e = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const double m = atom.rmass[i];
+        const double inertia = 0.4 * m * atom.radius[i] * atom.radius[i];
+        for (int k = 0; k < 3; ++k)
+        {
+            e += 0.5 * m * atom.v[i][k] * atom.v[i][k] + 0.5 * inertia * atom.omega[i][k] * atom.omega[i][k];
+        }
+    }
+    return e;
+}
+
+
+void BeamScene::collectBreakEvents()
+{
+    const std::vector<BreakEvent> all = gatherBreakEvents(comm_, bonds_->takeLocalBreakEvents());
+    for (const BreakEvent& e : all)
+    {
+        breakage_.append(e);
+    }
+}
+
+
+void BeamScene::writeFrame(int frame)
+{
+    const GatheredState state = gatherState(*lmp_, *bonds_, fixedType);
+    if (rank_ != 0)
+    {
+        return;
+    }
+    BondFrame network;
+    auto addLink = [&](long a, long b, int family, int stateCode, int mode, double time)
+    {
+        const auto ia = state.indexOfTag.find(a);
+        const auto ib = state.indexOfTag.find(b);
+        if (ia == state.indexOfTag.end() || ib == state.indexOfTag.end())
+        {
+            return;
+        }
+        network.endA.push_back(state.particles.position[ia->second]);
+        network.endB.push_back(state.particles.position[ib->second]);
+        network.family.push_back(family);
+        network.state.push_back(stateCode);
+        network.mode.push_back(mode);
+        network.time.push_back(time);
+    };
+    for (const BondLink& l : state.links)
+    {
+        addLink(l.tagA, l.tagB, l.family, 0, 0, -1.0);
+    }
+    for (const BreakEvent& e : breakage_.events())
+    {
+        addLink(e.tagA, e.tagB, static_cast<int>(e.family), 1, static_cast<int>(e.mode), e.time);
+    }
+
+    std::ostringstream name;
+    name << std::setw(5) << std::setfill('0') << frame;
+    const std::string particlesFile = "particles_" + name.str() + ".vtp";
+    const std::string bondsFile = "bonds_" + name.str() + ".vtp";
+    writeParticlesVtp(path("VTK/" + particlesFile), state.particles);
+    writeBondsVtp(path("VTK/" + bondsFile), network);
+    if (!particlesPvd_)
+    {
+        particlesPvd_ = std::make_unique<PvdCollection>(path("VTK/particles.pvd"));
+        bondsPvd_ = std::make_unique<PvdCollection>(path("VTK/bonds.pvd"));
+    }
+    particlesPvd_->add(lmp_->time(), particlesFile);
+    bondsPvd_->add(lmp_->time(), bondsFile);
+    breakage_.writeHdf5(path("postProcessing/breakage.h5"));
+    curve_.write(path("postProcessing/platenForce.csv"));
+}
+
+
+void BeamScene::run()
+{
+    const auto wallStart = std::chrono::steady_clock::now();
+    log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
+        + std::to_string(ranks_) + " rank(s)");
+    buildParticles();
+    writeLiggghtsInputs();
+    MPI_Barrier(comm_);
+    startLiggghts();
+
+    const double speed = settings_.platenSpeed;
+    const long stepsPerSample =
+        std::max(1L, std::lround(settings_.sampleInterval / (speed * dt_)));
+    const long samplesPerFrame =
+        std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
+    const long maxSteps = std::lround((settings_.maxTravel + settings_.initialGap) / (speed * dt_));
+
+    std::ostringstream plan;
+    plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
+         << maxSteps << " steps (" << settings_.maxTravel * 1e3 << " mm of travel after contact)";
+    log(plan.str());
+
+    double peak = 0.0, travelAtPeak = 0.0, platenWork = 0.0, previousForce = 0.0;
+    double halfLoadTravel = -1.0;
+    long steps = 0;
+    int frame = 0;
+    auto lastLog = std::chrono::steady_clock::now();
+    lmp_->command("run 0");
+    writeFrame(frame++);
+
+    for (long sample = 1; steps < maxSteps; ++sample)
+    {
+        lmp_->command("run " + std::to_string(stepsPerSample) + " pre no post no");
+        steps += stepsPerSample;
+
+        const double travel = speed * lmp_->time();
+        const double force = platenForce();
+        platenWork += 0.5 * (force + previousForce) * speed * stepsPerSample * dt_;
+        previousForce = force;
+        const double kinetic = sumOverRanks(comm_, localKineticEnergy());
+        const double elastic = sumOverRanks(comm_, bonds_->localBondEnergy());
+        collectBreakEvents();
+        curve_.addRow
+        ({
+            lmp_->time(), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic
+        });
+
+        // A blown-up run: NaN forces, lost bonds, or kinetic energy that the
+        // platen never put in.
+        std::string failure = bonds_->failure();
+        int failed = failure.empty() ? 0 : 1, anyFailed = 0;
+        MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
+        if (anyFailed == 0 && kinetic > 2.0 * std::abs(platenWork) + 1e-6)
+        {
+            std::ostringstream msg;
+            msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
+                << platenWork << " J) at time " << lmp_->time() << " s, step " << lmp_->step()
+                << ": the run is unstable (lower timeStep.factor)";
+            failure = msg.str();
+            anyFailed = 1;
+        }
+        if (anyFailed)
+        {
+            curve_.write(path("postProcessing/platenForce.csv"));
+            throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
+        }
+
+        if (force > peak)
+        {
+            peak = force;
+            travelAtPeak = travel;
+            kineticToElasticAtPeak_ = elastic > 0.0 ? kinetic / elastic : 0.0;
+        }
+        if (halfLoadTravel < 0.0 && peak > 0.0 && travel > travelAtPeak && force < 0.5 * peak)
+        {
+            halfLoadTravel = travel;
+            log("Load has fallen to half the peak " + number(peak * 1e-3) + " kN, "
+                + number((travel - travelAtPeak) * 1e3) + " mm after it");
+        }
+
+        if (sample % samplesPerFrame == 0)
+        {
+            writeFrame(frame++);
+        }
+
+        const auto now = std::chrono::steady_clock::now();
+        const double elapsed = std::chrono::duration<double>(now - wallStart).count();
+        if (std::chrono::duration<double>(now - lastLog).count() > 10.0)
+        {
+            lastLog = now;
+            const double remaining = elapsed / steps * (maxSteps - steps);
+            std::ostringstream line;
+            line << std::fixed << std::setprecision(1) << "t = " << lmp_->time() * 1e3 << " ms"
+                 << "  travel " << travel * 1e3 << " mm  force " << force * 1e-3 << " kN"
+                 << "  peak " << peak * 1e-3 << " kN  broken " << breakage_.size()
+                 << "  " << std::setprecision(0) << steps * particles_.size() / elapsed
+                 << " particle-steps/s  ETA <= " << formatDuration(remaining);
+            log(line.str());
+        }
+
+        if (settings_.stopAfterHalfLoad && halfLoadTravel > 0.0
+            && travel > halfLoadTravel + settings_.travelAfterHalfLoad)
+        {
+            break;
+        }
+    }
+
+    writeFrame(frame++);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    writeSummary(wall, steps);
+    log("End: " + std::to_string(steps) + " steps in " + formatDuration(wall) + ", "
+        + std::to_string(breakage_.size()) + " bonds broken");
+}
+
+
+void BeamScene::writeSummary(double wallSeconds, long steps) const
+{
+    if (rank_ != 0)
+    {
+        return;
+    }
+    std::vector<double> travel, force;
+    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    {
+        travel.push_back(curve_.row(k)[1]);
+        force.push_back(curve_.row(k)[2]);
+    }
+    double peak = 0.0;
+    for (double f : force) peak = std::max(peak, f);
+    const double onset = contactOnset(travel, force, 0.01 * peak);
+    std::vector<double> displacement;
+    for (double t : travel) displacement.push_back(t - onset);
+    const ForceCurveResult r = analyseForceCurve(displacement, force);
+
+    // Crack pattern: where along the span and across the width the bonds broke.
+    const int bins = 10;
+    std::vector<int> alongSpan(bins, 0);
+    double centreBreaks = 0.0;
+    for (const BreakEvent& e : breakage_.events())
+    {
+        const int bin = std::clamp(static_cast<int>(e.position.x() / settings_.length * bins), 0, bins - 1);
+        ++alongSpan[bin];
+        if (std::abs(e.position.x() - 0.5 * settings_.length) < 0.1 * settings_.length)
+        {
+            centreBreaks += 1.0;
+        }
+    }
+
+    const double fieldSlope = 6.25e6, fieldPeak = 120000.0;
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\n"
+      << "  \"case\": \"levelIceBeam\",\n"
+      << "  \"elastic_slope_N_per_m\": " << jsonNumber(r.elasticSlope) << ",\n"
+      << "  \"elastic_slope_fit_R2\": " << jsonNumber(r.slopeFitR2) << ",\n"
+      << "  \"peak_force_N\": " << jsonNumber(r.peakForce) << ",\n"
+      << "  \"travel_at_peak_m\": " << jsonNumber(r.travelAtPeak) << ",\n"
+      << "  \"half_load_reached\": " << (r.halfLoadReached ? "true" : "false") << ",\n"
+      << "  \"half_load_travel_after_peak_m\": "
+      << (r.halfLoadReached ? jsonNumber(r.halfLoadTravelAfterPeak) : "null") << ",\n"
+      << "  \"contact_onset_travel_m\": " << jsonNumber(onset) << ",\n"
+      << "  \"field\": {\"elastic_slope_N_per_m\": " << fieldSlope << ", \"peak_force_N\": " << fieldPeak
+      << ", \"half_load_travel_after_peak_m\": 0.07},\n"
+      << "  \"slope_error\": " << jsonNumber(r.elasticSlope / fieldSlope - 1.0) << ",\n"
+      << "  \"peak_error\": " << jsonNumber(r.peakForce / fieldPeak - 1.0) << ",\n"
+      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(kineticToElasticAtPeak_) << ",\n"
+      << "  \"crack_pattern\": {\n"
+      << "    \"broken_bonds\": " << breakage_.size() << ",\n"
+      << "    \"by_mode\": {\"tension\": " << breakage_.count(BreakMode::tension)
+      << ", \"shear\": " << breakage_.count(BreakMode::shear)
+      << ", \"twist\": " << breakage_.count(BreakMode::twist)
+      << ", \"bending\": " << breakage_.count(BreakMode::bending) << "},\n"
+      << "    \"share_within_10pct_of_span_from_centre\": "
+      << jsonNumber(breakage_.empty() ? 0.0 : centreBreaks / breakage_.size()) << ",\n"
+      << "    \"along_span_histogram\": [";
+    for (int b = 0; b < bins; ++b) j << (b ? ", " : "") << alongSpan[b];
+    j << "]\n  },\n"
+      << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
+      << "  \"particles\": " << particles_.size() << ",\n"
+      << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
+      << "  \"bonds_per_particle\": " << bondStats_.meanBondsPerParticle << ",\n"
+      << "  \"steps\": " << steps << ",\n"
+      << "  \"dt\": " << dt_ << ",\n"
+      << "  \"ranks\": " << ranks_ << ",\n"
+      << "  \"wall_s\": " << wallSeconds << ",\n"
+      << "  \"particle_steps_per_s\": " << steps * particles_.size() / wallSeconds << "\n"
+      << "}\n";
+    writeFileAtomically(path("postProcessing/summary.json"), j.str());
+
+    // The curve again, with displacement measured from first contact.
+    CsvWriter curve({"time", "travel", "displacement", "force", "brokenBonds", "kineticEnergy", "bondEnergy"});
+    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    {
+        const std::vector<double>& row = curve_.row(k);
+        curve.addRow({row[0], row[1], row[1] - onset, row[2], row[3], row[4], row[5]});
+    }
+    curve.write(path("postProcessing/platenForce.csv"));
+}
+
+} // namespace iceDEM

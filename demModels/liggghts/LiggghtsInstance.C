@@ -1,0 +1,87 @@
+#include "LiggghtsInstance.H"
+
+#include "lammps.h"
+#include "input.h"
+#include "modify.h"
+#include "fix.h"
+#include "update.h"
+
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace iceDEM
+{
+
+LiggghtsInstance::LiggghtsInstance(MPI_Comm comm, const std::string& logFile)
+:
+    comm_(comm),
+    lmp_(nullptr)
+{
+    std::vector<std::string> args{"liggghts", "-screen", "none", "-log", logFile, "-echo", "none"};
+    std::vector<char*> argv;
+    for (std::string& a : args)
+    {
+        argv.push_back(a.data());
+    }
+    lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm);
+}
+
+
+LiggghtsInstance::~LiggghtsInstance()
+{
+    delete lmp_;
+}
+
+
+void LiggghtsInstance::command(const std::string& line)
+{
+    lmp_->input->one(line.c_str());
+}
+
+
+void LiggghtsInstance::setVariable(const std::string& name, const std::string& value)
+{
+    command("variable " + name + " delete");
+    command("variable " + name + " index " + value);
+}
+
+
+void LiggghtsInstance::setVariable(const std::string& name, double value)
+{
+    std::ostringstream s;
+    s.precision(17);
+    s << value;
+    setVariable(name, s.str());
+}
+
+
+LAMMPS_NS::Fix& LiggghtsInstance::fix(const std::string& id) const
+{
+    const int index = lmp_->modify->find_fix(id.c_str());
+    if (index < 0)
+    {
+        throw std::runtime_error("LIGGGHTS has no fix with id '" + id + "'");
+    }
+    return *lmp_->modify->fix[index];
+}
+
+
+double LiggghtsInstance::time() const
+{
+    return lmp_->update->atime + (lmp_->update->ntimestep - lmp_->update->atimestep) * lmp_->update->dt;
+}
+
+
+long LiggghtsInstance::step() const
+{
+    return static_cast<long>(lmp_->update->ntimestep);
+}
+
+
+double LiggghtsInstance::timeStep() const
+{
+    return lmp_->update->dt;
+}
+
+} // namespace iceDEM

@@ -1,0 +1,147 @@
+#include "ParticleGather.H"
+
+#include "LiggghtsInstance.H"
+
+#include "atom.h"
+#include "lammps.h"
+
+#include <mpi.h>
+
+#include <numeric>
+
+namespace iceDEM
+{
+
+std::vector<double> gatherDoubles(MPI_Comm comm, const std::vector<double>& local)
+{
+    int rank = 0, size = 1;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &size);
+    int count = static_cast<int>(local.size());
+    std::vector<int> counts(size), offsets(size, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+    std::vector<double> all;
+    if (rank == 0)
+    {
+        std::partial_sum(counts.begin(), counts.end() - 1, offsets.begin() + 1);
+        all.resize(std::accumulate(counts.begin(), counts.end(), std::size_t(0)));
+    }
+    MPI_Gatherv
+    (
+        local.data(), count, MPI_DOUBLE,
+        all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, comm
+    );
+    return all;
+}
+
+
+GatheredState gatherState(const LiggghtsInstance& lmp, const IceBondForces& bonds, int fixedType)
+{
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    constexpr int perAtom = 13;
+    std::vector<double> local;
+    local.reserve(atom.nlocal * perAtom);
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        local.push_back(atom.tag[i]);
+        for (double** a : {atom.x, atom.v, atom.f})
+        {
+            local.insert(local.end(), a[i], a[i] + 3);
+        }
+        local.push_back(atom.radius[i]);
+        local.push_back(bonds.bondCount(i));
+        local.push_back(atom.type[i] == fixedType ? 1.0 : 0.0);
+    }
+    std::vector<double> linkData;
+    for (const BondLink& l : bonds.localLinks())
+    {
+        linkData.insert(linkData.end(), {double(l.tagA), double(l.tagB), double(l.family)});
+    }
+
+    GatheredState state;
+    const std::vector<double> all = gatherDoubles(lmp.communicator(), local);
+    const std::vector<double> allLinks = gatherDoubles(lmp.communicator(), linkData);
+
+    const std::size_t n = all.size() / perAtom;
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b)
+    {
+        return all[a * perAtom] < all[b * perAtom];
+    });
+    ParticleFrame& p = state.particles;
+    for (std::size_t k : order)
+    {
+        const double* r = &all[k * perAtom];
+        const long tag = static_cast<long>(r[0]);
+        state.indexOfTag[tag] = p.tag.size();
+        p.tag.push_back(tag);
+        p.position.emplace_back(r[1], r[2], r[3]);
+        p.velocity.emplace_back(r[4], r[5], r[6]);
+        p.force.emplace_back(r[7], r[8], r[9]);
+        p.radius.push_back(r[10]);
+        p.bondCount.push_back(static_cast<int>(r[11]));
+        p.fixed.push_back(static_cast<int>(r[12]));
+    }
+    for (std::size_t k = 0; k + 2 < allLinks.size(); k += 3)
+    {
+        state.links.push_back
+        ({
+            static_cast<long>(allLinks[k]),
+            static_cast<long>(allLinks[k + 1]),
+            static_cast<int>(allLinks[k + 2])
+        });
+    }
+    return state;
+}
+
+
+std::vector<BreakEvent> gatherBreakEvents(MPI_Comm comm, const std::vector<BreakEvent>& local)
+{
+    constexpr int perEvent = 8;
+    std::vector<double> data;
+    for (const BreakEvent& e : local)
+    {
+        data.insert
+        (
+            data.end(),
+            {
+                e.time, e.position.x(), e.position.y(), e.position.z(),
+                double(e.tagA), double(e.tagB),
+                double(static_cast<int>(e.family)), double(static_cast<int>(e.mode))
+            }
+        );
+    }
+    const std::vector<double> all = gatherDoubles(comm, data);
+    std::vector<BreakEvent> events;
+    for (std::size_t k = 0; k + perEvent - 1 < all.size(); k += perEvent)
+    {
+        BreakEvent e;
+        e.time = all[k];
+        e.position = Vec3(all[k + 1], all[k + 2], all[k + 3]);
+        e.tagA = static_cast<long>(all[k + 4]);
+        e.tagB = static_cast<long>(all[k + 5]);
+        e.family = static_cast<BondFamily>(static_cast<int>(all[k + 6]));
+        e.mode = static_cast<BreakMode>(static_cast<int>(all[k + 7]));
+        events.push_back(e);
+    }
+    return events;
+}
+
+
+double sumOverRanks(MPI_Comm comm, double local)
+{
+    double total = 0.0;
+    MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
+    return total;
+}
+
+
+long sumOverRanks(MPI_Comm comm, long local)
+{
+    long total = 0;
+    MPI_Allreduce(&local, &total, 1, MPI_LONG, MPI_SUM, comm);
+    return total;
+}
+
+} // namespace iceDEM

@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""1 rank against 2 ranks on the same small beam: the platen force must agree to
+1e-8 (relative) while no bond has broken, and after fracture the peak force and
+the number of broken bonds within 2 %."""
+import csv
+import json
+import sys
+
+
+def curve(case):
+    with open(f"{case}/postProcessing/platenForce.csv") as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def main(one, two):
+    a, b = curve(one), curve(two)
+    sa = json.load(open(f"{one}/postProcessing/summary.json"))
+    sb = json.load(open(f"{two}/postProcessing/summary.json"))
+    assert sa["ranks"] == 1 and sb["ranks"] == 2, (sa["ranks"], sb["ranks"])
+    peak = max(r["force"] for r in a)
+    compared, worst = 0, 0.0
+    for ra, rb in zip(a, b):
+        if ra["brokenBonds"] > 0 or rb["brokenBonds"] > 0:
+            break
+        assert abs(ra["time"] - rb["time"]) < 1e-12, (ra["time"], rb["time"])
+        if abs(ra["force"]) < 1e-6 * peak:
+            continue
+        rel = abs(ra["force"] - rb["force"]) / abs(ra["force"])
+        worst = max(worst, rel)
+        compared += 1
+    print(f"pre-break samples compared: {compared}, largest relative difference {worst:.3e}")
+    assert compared >= 5, "too few loaded samples before the first break to compare"
+    assert worst <= 1e-8, f"platen force differs by {worst:.3e} before any bond broke"
+
+    peak_diff = abs(sa["peak_force_N"] - sb["peak_force_N"]) / sa["peak_force_N"]
+    na = sa["crack_pattern"]["broken_bonds"]
+    nb = sb["crack_pattern"]["broken_bonds"]
+    count_diff = abs(na - nb) / max(na, 1)
+    print(f"peak force {sa['peak_force_N']:.6g} vs {sb['peak_force_N']:.6g} N ({peak_diff:.2%}); "
+          f"broken bonds {na} vs {nb} ({count_diff:.2%})")
+    assert na > 0, "no bond broke: the comparison after fracture means nothing"
+    assert peak_diff <= 0.02, "peak force differs by more than 2 %"
+    assert count_diff <= 0.02, "broken-bond count differs by more than 2 %"
+    print("1 passed, 0 failed")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
