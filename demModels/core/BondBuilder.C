@@ -1,0 +1,336 @@
+#include "BondBuilder.H"
+#include "InputError.H"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+const char* const propertiesFile = "constant/iceProperties";
+
+//- Uniform grid over the particle centres with cells at least `reach` wide, so that every pair
+//  closer than reach lies in the same or adjacent cells.
+class CellGrid
+{
+public:
+    CellGrid(const std::vector<ParticleSpec>& particles, double reach)
+    {
+        Vec3 lo = particles.front().position;
+        Vec3 hi = lo;
+        for (const ParticleSpec& p : particles)
+        {
+            lo = lo.cwiseMin(p.position);
+            hi = hi.cwiseMax(p.position);
+        }
+        lo_ = lo;
+        chooseCells(hi - lo, reach, particles.size());
+        fill(particles);
+    }
+
+    //- Call f(i, j) once for every unordered pair in the same or adjacent cells.
+    template<class PairFunction>
+    void forEachPair(PairFunction f) const
+    {
+        for (long cz = 0; cz < n_[2]; ++cz)
+        for (long cy = 0; cy < n_[1]; ++cy)
+        for (long cx = 0; cx < n_[0]; ++cx)
+        {
+            const long c = index(cx, cy, cz);
+            for (long a = start_[c]; a < start_[c + 1]; ++a)
+            {
+                const int i = items_[a];
+                for (long b = a + 1; b < start_[c + 1]; ++b)
+                {
+                    f(i, items_[b]);
+                }
+                // Half stencil: the 13 neighbours with a larger (z, y, x) index.
+                for (int dz = 0; dz <= 1; ++dz)
+                for (int dy = (dz == 0 ? 0 : -1); dy <= 1; ++dy)
+                for (int dx = (dz == 0 && dy == 0 ? 1 : -1); dx <= 1; ++dx)
+                {
+                    const long nx = cx + dx, ny = cy + dy, nz = cz + dz;
+                    if (nx < 0 || ny < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
+                    {
+                        continue;
+                    }
+                    const long d = index(nx, ny, nz);
+                    for (long b = start_[d]; b < start_[d + 1]; ++b)
+                    {
+                        f(i, items_[b]);
+                    }
+                }
+            }
+        }
+    }
+
+private:
+    //- Cells of at least `reach`; coarser when a sparse cloud would need far more cells than
+    //  particles.
+    void chooseCells(const Vec3& extent, double reach, std::size_t count)
+    {
+        const double maxCells = 8.0*count + 64.0;
+        double size = reach;
+        while (true)
+        {
+            double cells = 1.0;
+            for (int k = 0; k < 3; ++k)
+            {
+                n_[k] = std::max(1L, static_cast<long>(std::floor(extent[k]/size)));
+                cells *= n_[k];
+            }
+            if (cells <= maxCells)
+            {
+                break;
+            }
+            size *= 2.0;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+            invSize_[k] = extent[k] > 0.0 ? n_[k]/extent[k] : 0.0;
+        }
+    }
+
+    void fill(const std::vector<ParticleSpec>& particles)
+    {
+        const long nCells = n_[0]*n_[1]*n_[2];
+        std::vector<long> cellOf(particles.size());
+        start_.assign(nCells + 1, 0);
+        for (std::size_t i = 0; i < particles.size(); ++i)
+        {
+            cellOf[i] = cellIndex(particles[i].position);
+            ++start_[cellOf[i] + 1];
+        }
+        for (long c = 0; c < nCells; ++c)
+        {
+            start_[c + 1] += start_[c];
+        }
+        items_.resize(particles.size());
+        std::vector<long> next(start_.begin(), start_.end() - 1);
+        for (std::size_t i = 0; i < particles.size(); ++i)
+        {
+            items_[next[cellOf[i]]++] = static_cast<int>(i);
+        }
+    }
+
+    long index(long x, long y, long z) const
+    {
+        return x + n_[0]*(y + n_[1]*z);
+    }
+
+    long cellIndex(const Vec3& p) const
+    {
+        long c[3];
+        for (int k = 0; k < 3; ++k)
+        {
+            c[k] = std::min(n_[k] - 1, std::max(0L, static_cast<long>((p[k] - lo_[k])*invSize_[k])));
+        }
+        return index(c[0], c[1], c[2]);
+    }
+
+    Vec3 lo_;
+    long n_[3];
+    double invSize_[3];
+    std::vector<long> start_;
+    std::vector<int> items_;
+};
+
+void checkParticles(const std::vector<ParticleSpec>& particles)
+{
+    for (std::size_t i = 0; i < particles.size(); ++i)
+    {
+        const ParticleSpec& p = particles[i];
+        if (!(std::isfinite(p.radius) && p.radius > 0.0) || !p.position.allFinite())
+        {
+            std::ostringstream os;
+            os << "bond builder: particle " << i << " has radius " << p.radius << " at ("
+               << p.position.transpose() << "); radii must be positive and positions finite";
+            throw std::invalid_argument(os.str());
+        }
+    }
+}
+
+std::string vectorText(const Vec3& v)
+{
+    std::ostringstream os;
+    os << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+    return os.str();
+}
+
+} // namespace
+
+
+BondFamily bondFamily(const ParticleSpec& a, const ParticleSpec& b)
+{
+    return a.block == b.block ? BondFamily::ice : BondFamily::freeze;
+}
+
+
+BondBuilder::BondBuilder(const IceProperties& ice)
+:
+    maxBondsPerParticle_(ice.maxBondsPerParticle)
+{
+    for (int f = 0; f < nBondFamilies; ++f)
+    {
+        const BondFamily family = static_cast<BondFamily>(f);
+        distFactors_[f] = ice.family(family).distFactor;
+        if (!(std::isfinite(distFactors_[f]) && distFactors_[f] > 0.0))
+        {
+            throw InputError
+            (
+                propertiesFile,
+                "bondFamilies." + toString(family) + ".distFactor",
+                "must be a positive number (got " + std::to_string(distFactors_[f]) + ")"
+            );
+        }
+    }
+}
+
+
+BondBuilder& BondBuilder::skipFixedPairs(bool skip)
+{
+    skipFixedPairs_ = skip;
+    return *this;
+}
+
+
+std::vector<BondPair> BondBuilder::build(const std::vector<ParticleSpec>& particles)
+{
+    checkParticles(particles);
+    std::vector<BondPair> bonds;
+    if (particles.empty())
+    {
+        statistics_ = bondStatistics(bonds, 0);
+        return bonds;
+    }
+
+    double maxRadius = 0.0;
+    for (const ParticleSpec& p : particles)
+    {
+        maxRadius = std::max(maxRadius, p.radius);
+    }
+    const double maxFactor = *std::max_element(distFactors_.begin(), distFactors_.end());
+    const CellGrid grid(particles, 2.0*maxFactor*maxRadius);
+
+    grid.forEachPair([&](int a, int b)
+    {
+        const ParticleSpec& pa = particles[a];
+        const ParticleSpec& pb = particles[b];
+        if (skipFixedPairs_ && pa.fixed && pb.fixed)
+        {
+            return;
+        }
+        const BondFamily family = bondFamily(pa, pb);
+        const double reach = distFactors_[static_cast<int>(family)]*(pa.radius + pb.radius);
+        const double d2 = (pb.position - pa.position).squaredNorm();
+        // Cheap rejection with a margin, so the rule is decided on d itself, not on d^2.
+        if (d2 > (1.0 + 1e-12)*reach*reach)
+        {
+            return;
+        }
+        const double d = std::sqrt(d2);
+        if (d <= reach)
+        {
+            bonds.push_back({std::min(a, b), std::max(a, b), family, d});
+        }
+    });
+    std::sort(bonds.begin(), bonds.end(), [](const BondPair& x, const BondPair& y)
+    {
+        return x.i < y.i || (x.i == y.i && x.j < y.j);
+    });
+
+    statistics_ = bondStatistics(bonds, static_cast<int>(particles.size()));
+    if (statistics_.maxBondsPerParticle > maxBondsPerParticle_)
+    {
+        std::vector<int> count(particles.size(), 0);
+        for (const BondPair& b : bonds)
+        {
+            ++count[b.i];
+            ++count[b.j];
+        }
+        const auto first = std::find_if(count.begin(), count.end(), [&](int c)
+        {
+            return c > maxBondsPerParticle_;
+        });
+        const std::size_t k = first - count.begin();
+        const long over = std::count_if(count.begin(), count.end(), [&](int c)
+        {
+            return c > maxBondsPerParticle_;
+        });
+        std::ostringstream os;
+        os << "particle " << k << " at " << vectorText(particles[k].position) << " would need "
+           << count[k] << " bonds, more than the " << maxBondsPerParticle_ << " allowed ("
+           << over << " particle(s) exceed it, up to " << statistics_.maxBondsPerParticle
+           << " bonds); raise maxBondsPerParticle or lower distFactor (ice "
+           << distFactors_[static_cast<int>(BondFamily::ice)] << ", freeze "
+           << distFactors_[static_cast<int>(BondFamily::freeze)] << ")";
+        throw InputError(propertiesFile, "maxBondsPerParticle", os.str());
+    }
+    return bonds;
+}
+
+
+BondStatistics bondStatistics(const std::vector<BondPair>& bonds, int particleCount)
+{
+    BondStatistics s;
+    s.particleCount = particleCount;
+    s.totalBonds = static_cast<int>(bonds.size());
+    std::vector<int> count(particleCount, 0);
+    for (const BondPair& b : bonds)
+    {
+        if (b.i < 0 || b.j < 0 || b.i >= particleCount || b.j >= particleCount)
+        {
+            throw std::invalid_argument
+            (
+                "bond statistics: bond (" + std::to_string(b.i) + ", " + std::to_string(b.j)
+              + ") refers to a particle outside 0.." + std::to_string(particleCount - 1)
+            );
+        }
+        ++s.bondsPerFamily[static_cast<int>(b.family)];
+        ++count[b.i];
+        ++count[b.j];
+    }
+    if (particleCount > 0)
+    {
+        s.minBondsPerParticle = *std::min_element(count.begin(), count.end());
+        s.maxBondsPerParticle = *std::max_element(count.begin(), count.end());
+        s.meanBondsPerParticle = 2.0*s.totalBonds/particleCount;
+    }
+    s.histogram.assign(s.maxBondsPerParticle + 1, 0);
+    for (int c : count)
+    {
+        ++s.histogram[c];
+    }
+    return s;
+}
+
+
+std::string BondStatistics::summary() const
+{
+    std::ostringstream os;
+    os << totalBonds << " bonds (";
+    for (int f = 0; f < nBondFamilies; ++f)
+    {
+        os << (f ? ", " : "") << toString(static_cast<BondFamily>(f)) << " " << bondsPerFamily[f];
+    }
+    os << ") on " << particleCount << " particles; per particle mean " << std::fixed
+       << std::setprecision(2) << meanBondsPerParticle << ", min " << minBondsPerParticle
+       << ", max " << maxBondsPerParticle << "; histogram (bonds:particles)";
+    for (std::size_t k = 0; k < histogram.size(); ++k)
+    {
+        if (histogram[k] > 0)
+        {
+            os << " " << k << ":" << histogram[k];
+        }
+    }
+    return os.str();
+}
+
+} // namespace iceDEM
