@@ -282,6 +282,7 @@ void BeamScene::writeLiggghtsInputs() const
 
 void BeamScene::startLiggghts()
 {
+    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
     lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
     LiggghtsInstance& lmp = *lmp_;
 
@@ -325,12 +326,16 @@ void BeamScene::startLiggghts()
     {
         throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
     }
-    lmp.command("include " + script);
+    lmp.runScript(script);
 
     bonds_ = std::make_unique<IceBondForces>(lmp, ice_, contactStiffness_);
-    bonds_->createBonds(particles_, bondPairs_);
     lmp.command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
+    // LIGGGHTS' set-up of the first run resets property/atom values to their
+    // defaults, so the bonds are stored after it.
+    lmp.command("run 0");
+    bonds_->createBonds(particles_, bondPairs_);
+    lmp.command("run 0");   // forces of the first step with the bonds in place
 }
 
 
@@ -445,7 +450,6 @@ void BeamScene::run()
     long steps = 0;
     int frame = 0;
     auto lastLog = std::chrono::steady_clock::now();
-    lmp_->command("run 0");
     writeFrame(frame++);
 
     for (long sample = 1; steps < maxSteps; ++sample)

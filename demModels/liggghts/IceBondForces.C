@@ -277,7 +277,7 @@ std::vector<BondLink> IceBondForces::localLinks() const
 
 double IceBondForces::localBondEnergy() const
 {
-    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;   // map() is not const
     double energy = 0.0;
     for (int i = 0; i < atom.nlocal; ++i)
     {

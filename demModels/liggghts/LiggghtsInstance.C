@@ -6,6 +6,10 @@
 #include "fix.h"
 #include "update.h"
 
+#include <cstdlib>
+#include <deque>
+#include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -13,12 +17,21 @@
 namespace iceDEM
 {
 
+namespace
+{
+
+std::string watchedLog;
+bool finishedNormally = false;
+
+} // namespace
+
+
 LiggghtsInstance::LiggghtsInstance(MPI_Comm comm, const std::string& logFile)
 :
     comm_(comm),
     lmp_(nullptr)
 {
-    std::vector<std::string> args{"liggghts", "-screen", "none", "-log", logFile, "-echo", "none"};
+    std::vector<std::string> args{"liggghts", "-screen", "/dev/null", "-log", logFile, "-echo", "none"};
     std::vector<char*> argv;
     for (std::string& a : args)
     {
@@ -31,12 +44,56 @@ LiggghtsInstance::LiggghtsInstance(MPI_Comm comm, const std::string& logFile)
 LiggghtsInstance::~LiggghtsInstance()
 {
     delete lmp_;
+    finishedNormally = true;
 }
 
 
 void LiggghtsInstance::command(const std::string& line)
 {
     lmp_->input->one(line.c_str());
+}
+
+
+void LiggghtsInstance::runScript(const std::string& path)
+{
+    lmp_->input->file(path.c_str());
+}
+
+
+namespace
+{
+
+void printLogTail()
+{
+    if (finishedNormally || watchedLog.empty())
+    {
+        return;
+    }
+    std::ifstream log(watchedLog);
+    std::deque<std::string> tail;
+    for (std::string line; std::getline(log, line);)
+    {
+        tail.push_back(line);
+        if (tail.size() > 8) tail.pop_front();
+    }
+    std::cerr << "\n--> stopped inside LIGGGHTS; the end of " << watchedLog << ":\n";
+    for (const std::string& line : tail)
+    {
+        std::cerr << "    " << line << "\n";
+    }
+    std::cerr << std::endl;
+}
+
+} // namespace
+
+
+void LiggghtsInstance::reportErrorsFromLog(const std::string& logFile)
+{
+    if (watchedLog.empty())
+    {
+        std::atexit(printLogTail);
+    }
+    watchedLog = logFile;
 }
 
 
