@@ -248,15 +248,17 @@ void BeamScene::writeLiggghtsInputs() const
     {
         return;
     }
-    const double margin = 0.05 + settings_.platenDiameter;
+    // Room for broken pieces: a particle that leaves the box is lost, which
+    // the run reports as an error.
+    const double margin = 0.5 * settings_.length;
     writeStreamAtomically(path("DEM/packing.data"), [&](std::ostream& out)
     {
         out << "LIGGGHTS data file: level-ice beam packing written by iceBeamDEM\n\n"
             << particles_.size() << " atoms\n2 atom types\n\n"
             << std::setprecision(17)
             << -margin << " " << settings_.length + margin << " xlo xhi\n"
-            << -settings_.initialGap - 2.0 * margin << " " << settings_.width + 3.0 + margin
-            << " ylo yhi\n"
+            << -settings_.initialGap - settings_.platenDiameter - margin << " "
+            << settings_.width + settings_.maxTravel + margin << " ylo yhi\n"
             << -margin << " " << settings_.thickness + margin << " zlo zhi\n\nAtoms\n\n";
         for (std::size_t k = 0; k < particles_.size(); ++k)
         {
@@ -472,6 +474,12 @@ void BeamScene::run()
         // A blown-up run: NaN forces, lost bonds, or kinetic energy that the
         // platen never put in.
         std::string failure = bonds_->failure();
+        const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
+        if (failure.empty() && present != static_cast<long>(particles_.size()))
+        {
+            failure = std::to_string(particles_.size() - present) + " particle(s) left the simulation box by time "
+                + number(lmp_->time()) + " s (step " + std::to_string(lmp_->step()) + ")";
+        }
         int failed = failure.empty() ? 0 : 1, anyFailed = 0;
         MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
         if (anyFailed == 0 && kinetic > 2.0 * std::abs(platenWork) + 1e-6)

@@ -10,6 +10,7 @@
 #include "lammps.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -24,14 +25,38 @@ Vec3 row(double** a, int i)
     return Vec3(a[i][0], a[i][1], a[i][2]);
 }
 
-void addTo(double** a, int i, const Vec3& v)
-{
-    a[i][0] += v[0];
-    a[i][1] += v[1];
-    a[i][2] += v[2];
-}
 
 } // namespace
+
+
+void BondLoadSums::reset(int atoms, int capacity)
+{
+    capacity_ = capacity;
+    count_.assign(atoms, 0);
+    entries_.resize(static_cast<std::size_t>(atoms) * capacity);
+}
+
+
+void BondLoadSums::add(int atom, long partnerTag, const Vec3& force, const Vec3& torque)
+{
+    entries_[static_cast<std::size_t>(atom) * capacity_ + count_[atom]++] = {partnerTag, force, torque};
+}
+
+
+void BondLoadSums::addSumTo(int atom, double* force, double* torque)
+{
+    Entry* first = &entries_[static_cast<std::size_t>(atom) * capacity_];
+    Entry* last = first + count_[atom];
+    std::sort(first, last, [](const Entry& x, const Entry& y) { return x.partnerTag < y.partnerTag; });
+    for (const Entry* e = first; e != last; ++e)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            force[k] += e->force[k];
+            torque[k] += e->torque[k];
+        }
+    }
+}
 
 
 IceBondForces::IceBondForces
@@ -142,6 +167,7 @@ void IceBondForces::compute()
     const int* tag = atom.tag;
     const double dt = lmp_.timeStep();
     const double time = lmp_.time();
+    loads_.reset(nlocal, table_.capacity());
 
     for (int i = 0; i < nlocal; ++i)
     {
@@ -155,7 +181,7 @@ void IceBondForces::compute()
                 std::ostringstream msg;
                 msg << "bond partner " << partnerTag << " of particle " << tag[i]
                     << " at (" << row(atom.x, i).transpose() << ") is not within this rank's"
-                    << " ghost cut-off: the bond has stretched too far";
+                    << " ghost cut-off: the bond has stretched too far, or the partner left the simulation box";
                 fail(msg.str());
                 ++slot;
                 continue;
@@ -202,13 +228,11 @@ void IceBondForces::compute()
 
             if (a < nlocal)
             {
-                addTo(atom.f, a, forceOnA);
-                addTo(atom.torque, a, load.torqueOnA);
+                loads_.add(a, state.tagB, forceOnA, load.torqueOnA);
             }
             if (b < nlocal)
             {
-                addTo(atom.f, b, -forceOnA);
-                addTo(atom.torque, b, load.torqueOnB);
+                loads_.add(b, state.tagA, -forceOnA, load.torqueOnB);
             }
             table_.write(i, slot, state, tag[i]);
             if (partnerSlot >= 0)
@@ -222,6 +246,7 @@ void IceBondForces::compute()
     const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
     for (int i = 0; i < nlocal; ++i)
     {
+        loads_.addSumTo(i, atom.f[i], atom.torque[i]);
         Vec3 force = row(atom.f, i);
         Vec3 torque = row(atom.torque, i);
         if (!std::isfinite(force.squaredNorm()) || !std::isfinite(torque.squaredNorm()))

@@ -105,10 +105,11 @@ int main(int argc, char** argv)
         lmp.command("set atom * diameter 0.02 density 917");
 
         IceBondForces bonds(lmp, ice, 2.0e5);
-        bonds.createBonds(particles, pairs);
         lmp.command("fix iceBondForces all external pf/callback 1 1");
         bonds.attach("iceBondForces");
         lmp.command("fix integrate all nve/sphere");
+        lmp.command("run 0");   // LIGGGHTS' first set-up resets property/atom values
+        bonds.createBonds(particles, pairs);
 
         // Fly along +x, spin about y and shear: every spring gets a history.
         LAMMPS_NS::Atom& atom = *lmp.engine().atom;
