@@ -128,7 +128,11 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
 
     const Dictionary& packing = props.subDict("packing");
     packing.checkKeys({"particles", "radiusSpread", "solidFraction", "seed"});
-    s.particles = options.particles > 0 ? options.particles : packing.getLabel("particles");
+    s.particles = packing.getLabel("particles");   // validated even when overridden
+    if (options.particles > 0)
+    {
+        s.particles = options.particles;
+    }
     if (s.particles < 20)
     {
         packing.fail("particles", "at least 20 particles are needed");
@@ -503,11 +507,15 @@ void BeamScene::run()
             travelAtPeak = travel;
             kineticToElasticAtPeak_ = elastic > 0.0 ? kinetic / elastic : 0.0;
         }
-        if (halfLoadTravel < 0.0 && peak > 0.0 && travel > travelAtPeak && force < 0.5 * peak)
+        // Half load counts once the force stays below it; a dip that recovers
+        // (noise, a crack that arrests) does not.
+        if (force >= 0.5 * peak)
+        {
+            halfLoadTravel = -1.0;
+        }
+        else if (halfLoadTravel < 0.0 && peak > 0.0)
         {
             halfLoadTravel = travel;
-            log("Load has fallen to half the peak " + number(peak * 1e-3) + " kN, "
-                + number((travel - travelAtPeak) * 1e3) + " mm after it");
         }
 
         if (sample % samplesPerFrame == 0)
@@ -533,6 +541,8 @@ void BeamScene::run()
         if (settings_.stopAfterHalfLoad && halfLoadTravel > 0.0
             && travel > halfLoadTravel + settings_.travelAfterHalfLoad)
         {
+            log("Load has stayed below half the peak " + number(peak * 1e-3) + " kN since "
+                + number((halfLoadTravel - travelAtPeak) * 1e3) + " mm after it: stopping");
             break;
         }
     }

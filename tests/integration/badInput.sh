@@ -11,7 +11,7 @@ check() {   # name, file, sed expression, expected text in the message
     local name="$1" file="$2" edit="$3" expected="$4"
     rm -rf "$work/$name"; mkdir -p "$work/$name"
     cp -r "$case_dir/constant" "$case_dir/system" "$case_dir/DEM" "$work/$name/"
-    sed -i -e "$edit" "$work/$name/$file"
+    if [ "$edit" = delete ]; then rm "$work/$name/$file"; else sed -i -e "$edit" "$work/$name/$file"; fi
     out=$(mpirun -np 1 "$app" -case "$work/$name" -particles 100 2>&1); rc=$?
     if [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "$expected" <<<"$out"; then
         echo "ok   $name: $(grep -F -- "$expected" <<<"$out" | head -1 | sed 's/^ *//')"
@@ -29,7 +29,8 @@ check unknownDamping    constant/iceProperties  's/model .*hysteretic;/model spr
 check unsafeTimeStep    constant/iceProperties  's/factor .*;/factor 1.5;/'    "timeStep.factor"
 check badParticleCount  constant/beamProperties 's/particles .*;/particles abc;/' "packing.particles"
 check tooFewBondSlots   constant/iceProperties  's/maxBondsPerParticle .*;/maxBondsPerParticle 2;/' "maxBondsPerParticle"
-check missingFile       constant/beamProperties '1,$d'                         "platen"
+check missingFile       constant/beamProperties delete                         "beamProperties"
+check missingScript     DEM/in.levelIceBeam     delete                         "in.levelIceBeam"
 
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
