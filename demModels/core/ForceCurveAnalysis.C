@@ -178,6 +178,34 @@ ForceCurveResult analyseForceCurve
 }
 
 
+FirstPeak firstPeak
+(
+    const std::vector<double>& displacement,
+    const std::vector<double>& force,
+    double dropFraction
+)
+{
+    if (displacement.size() != force.size() || force.empty())
+    {
+        throw std::invalid_argument("firstPeak: displacement and force must be non-empty and of equal length");
+    }
+    FirstPeak best;
+    best.force = force[0];
+    for (std::size_t k = 1; k < force.size(); ++k)
+    {
+        if (force[k] > best.force)
+        {
+            best = {force[k], displacement[k], k};
+        }
+        else if (best.force > 0.0 && force[k] <= (1.0 - dropFraction) * best.force)
+        {
+            return best;
+        }
+    }
+    return best;
+}
+
+
 double contactOnset
 (
     const std::vector<double>& displacement,

@@ -61,7 +61,7 @@ BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
 {
     BeamSceneOptions o;
     const std::string usage =
-        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S]";
+        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S] [-steps N]";
     for (int k = 1; k < argc; ++k)
     {
         const std::string arg = argv[k];
@@ -78,6 +78,7 @@ BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
             if (arg == "-case") o.caseDir = value();
             else if (arg == "-particles") o.particles = std::stoi(value());
             else if (arg == "-platenSpeed") o.platenSpeed = std::stod(value());
+            else if (arg == "-steps") o.steps = std::stol(value());
             else if (arg == "-help" || arg == "--help")
             {
                 std::cout << usage << std::endl;
@@ -90,9 +91,9 @@ BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
             throw InputError("command line", arg, "'" + std::string(argv[k]) + "' is not a number");
         }
     }
-    if (o.particles < 0 || o.platenSpeed < 0.0)
+    if (o.particles < 0 || o.platenSpeed < 0.0 || o.steps < 0)
     {
-        throw InputError("command line", "-particles/-platenSpeed", "must be positive");
+        throw InputError("command line", "-particles/-platenSpeed/-steps", "must be positive");
     }
     return o;
 }
@@ -327,6 +328,25 @@ void BeamScene::startLiggghts()
     lmp.setVariable("dt", dt_);
     lmp.setVariable("platenSpeed", settings_.platenSpeed);
 
+    // The same variables as a LIGGGHTS script, so that the scene can be rerun
+    // by the plain `liggghts` binary (benchmarks, debugging).
+    if (rank_ == 0)
+    {
+        std::ostringstream vars;
+        vars << std::setprecision(17) << "# written by iceBeamDEM\n";
+        for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
+                 {"dataFile", path("DEM/packing.data")}, {"platenStl", path("DEM/platen.stl")},
+                 {"ghostCutoff", number(ghostCutoff)}, {"neighbourSkin", number(skin)},
+                 {"kn", number(contactStiffness_)}, {"kt", number(kt)}, {"gn", number(gn)},
+                 {"gt", number(gt)}, {"mu", number(ice_.material.frictionCoefficient)},
+                 {"muR", number(ice_.material.rollingFrictionCoefficient)}, {"dt", number(dt_)},
+                 {"platenSpeed", number(settings_.platenSpeed)}})
+        {
+            vars << "variable " << name << " index " << value << "\n";
+        }
+        writeFileAtomically(path("DEM/variables.generated"), vars.str());
+    }
+
     const std::string script = path("DEM/in.levelIceBeam");
     if (!std::filesystem::exists(script))
     {
@@ -444,7 +464,9 @@ void BeamScene::run()
         std::max(1L, std::lround(settings_.sampleInterval / (speed * dt_)));
     const long samplesPerFrame =
         std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
-    const long maxSteps = std::lround((settings_.maxTravel + settings_.initialGap) / (speed * dt_));
+    const long maxSteps = options_.steps > 0
+        ? options_.steps
+        : std::lround((settings_.maxTravel + settings_.initialGap) / (speed * dt_));
 
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
@@ -457,15 +479,17 @@ void BeamScene::run()
     int frame = 0;
     auto lastLog = std::chrono::steady_clock::now();
     writeFrame(frame++);
+    const auto loopStart = std::chrono::steady_clock::now();
 
     for (long sample = 1; steps < maxSteps; ++sample)
     {
-        lmp_->command("run " + std::to_string(stepsPerSample) + " pre no post no");
-        steps += stepsPerSample;
+        const long chunk = std::min(stepsPerSample, maxSteps - steps);
+        lmp_->command("run " + std::to_string(chunk) + " pre no post no");
+        steps += chunk;
 
         const double travel = speed * lmp_->time();
         const double force = platenForce();
-        platenWork += 0.5 * (force + previousForce) * speed * stepsPerSample * dt_;
+        platenWork += 0.5 * (force + previousForce) * speed * chunk * dt_;
         previousForce = force;
         const double kinetic = sumOverRanks(comm_, localKineticEnergy());
         const double elastic = sumOverRanks(comm_, bonds_->localBondEnergy());
@@ -547,16 +571,18 @@ void BeamScene::run()
         }
     }
 
+    const double loop =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
     writeFrame(frame++);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    writeSummary(wall, steps);
+    writeSummary(wall, loop, steps);
     log("End: " + std::to_string(steps) + " steps in " + formatDuration(wall) + ", "
         + std::to_string(breakage_.size()) + " bonds broken");
 }
 
 
-void BeamScene::writeSummary(double wallSeconds, long steps) const
+void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps) const
 {
     if (rank_ != 0)
     {
@@ -574,6 +600,13 @@ void BeamScene::writeSummary(double wallSeconds, long steps) const
     std::vector<double> displacement;
     for (double t : travel) displacement.push_back(t - onset);
     const ForceCurveResult r = analyseForceCurve(displacement, force);
+    // The field's peak is the load at which the centre crack formed: the first
+    // major load drop. Later the cracked beam can carry more (see README).
+    // The elastic slope is fitted on the rise to that first peak.
+    const FirstPeak first = firstPeak(displacement, force, 0.1);
+    const std::vector<double> riseTravel(displacement.begin(), displacement.begin() + first.index + 1);
+    const std::vector<double> riseForce(force.begin(), force.begin() + first.index + 1);
+    const ForceCurveResult rise = analyseForceCurve(riseTravel, riseForce);
 
     // Crack pattern: where along the span and across the width the bonds broke.
     const int bins = 10;
@@ -593,8 +626,10 @@ void BeamScene::writeSummary(double wallSeconds, long steps) const
     std::ostringstream j;
     j << std::setprecision(10) << "{\n"
       << "  \"case\": \"levelIceBeam\",\n"
-      << "  \"elastic_slope_N_per_m\": " << jsonNumber(r.elasticSlope) << ",\n"
-      << "  \"elastic_slope_fit_R2\": " << jsonNumber(r.slopeFitR2) << ",\n"
+      << "  \"elastic_slope_N_per_m\": " << jsonNumber(rise.elasticSlope) << ",\n"
+      << "  \"elastic_slope_fit_R2\": " << jsonNumber(rise.slopeFitR2) << ",\n"
+      << "  \"first_peak_force_N\": " << jsonNumber(first.force) << ",\n"
+      << "  \"travel_at_first_peak_m\": " << jsonNumber(first.travel) << ",\n"
       << "  \"peak_force_N\": " << jsonNumber(r.peakForce) << ",\n"
       << "  \"travel_at_peak_m\": " << jsonNumber(r.travelAtPeak) << ",\n"
       << "  \"half_load_reached\": " << (r.halfLoadReached ? "true" : "false") << ",\n"
@@ -603,7 +638,8 @@ void BeamScene::writeSummary(double wallSeconds, long steps) const
       << "  \"contact_onset_travel_m\": " << jsonNumber(onset) << ",\n"
       << "  \"field\": {\"elastic_slope_N_per_m\": " << fieldSlope << ", \"peak_force_N\": " << fieldPeak
       << ", \"half_load_travel_after_peak_m\": 0.07},\n"
-      << "  \"slope_error\": " << jsonNumber(r.elasticSlope / fieldSlope - 1.0) << ",\n"
+      << "  \"slope_error\": " << jsonNumber(rise.elasticSlope / fieldSlope - 1.0) << ",\n"
+      << "  \"first_peak_error\": " << jsonNumber(first.force / fieldPeak - 1.0) << ",\n"
       << "  \"peak_error\": " << jsonNumber(r.peakForce / fieldPeak - 1.0) << ",\n"
       << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(kineticToElasticAtPeak_) << ",\n"
       << "  \"crack_pattern\": {\n"
@@ -625,7 +661,8 @@ void BeamScene::writeSummary(double wallSeconds, long steps) const
       << "  \"dt\": " << dt_ << ",\n"
       << "  \"ranks\": " << ranks_ << ",\n"
       << "  \"wall_s\": " << wallSeconds << ",\n"
-      << "  \"particle_steps_per_s\": " << steps * particles_.size() / wallSeconds << "\n"
+      << "  \"loop_wall_s\": " << loopSeconds << ",\n"
+      << "  \"particle_steps_per_s\": " << steps * particles_.size() / loopSeconds << "\n"
       << "}\n";
     writeFileAtomically(path("postProcessing/summary.json"), j.str());
 

@@ -158,3 +158,25 @@ TEST(ForceCurveAnalysis, ContactOnsetInterpolatesTheFirstCrossing)
     EXPECT_EQ(contactOnset(d, f, -1.0), 0.0);
     EXPECT_TRUE(std::isnan(contactOnset(d, f, 50.0)));
 }
+
+
+TEST(ForceCurveFirstPeak, FirstMaximumFollowedByALargeDropNotTheGlobalOne)
+{
+    // Rises to 100, drops to 85 (15 %), rises again to 150 (an arch forms).
+    const std::vector<double> d{0, 1, 2, 3, 4, 5, 6, 7};
+    const std::vector<double> f{0, 50, 100, 95, 85, 120, 150, 70};
+    const FirstPeak p = firstPeak(d, f, 0.1);
+    EXPECT_EQ(p.force, 100.0);
+    EXPECT_EQ(p.travel, 2.0);
+    EXPECT_EQ(p.index, 2u);
+    // A 5 % dip is noise, not a crack: the first peak is then 150.
+    EXPECT_EQ(firstPeak(d, f, 0.2).force, 150.0);
+}
+
+TEST(ForceCurveFirstPeak, MonotoneCurveGivesItsMaximum)
+{
+    const std::vector<double> d{0, 1, 2};
+    const std::vector<double> f{0, 1, 2};
+    EXPECT_EQ(firstPeak(d, f, 0.1).force, 2.0);
+    EXPECT_THROW(firstPeak(d, {1.0}, 0.1), std::invalid_argument);
+}

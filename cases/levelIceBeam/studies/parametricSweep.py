@@ -1,0 +1,127 @@
+#!/usr/bin/python3
+"""Parametric sweep of the side-loaded beam at 1,200 particles, the runs of
+../../../../shared/data/levelIceParametric.csv (E, distFactor, breakN, alpha,
+beta), each on two random packings (seeds 1 and 2) as the reference study did.
+
+    ./parametricSweep.py [-jobs 2] [-particles 1200] [-platenSpeed 0.2]
+
+Resumable: a run whose summary.json exists is not repeated. Writes
+parametricSweep/results.csv and parametricSweep/parametricSweep.png, the
+reference values next to ours for the four trends (modulus raises the slope;
+distFactor; peak proportional to breakN; damping raises residual strength)."""
+import argparse
+import concurrent.futures
+import csv
+import math
+import os
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+SPAN, WIDTH, THICKNESS = 2.5, 0.50, 0.55
+
+
+def effective_modulus(slope):
+    """scenes.md section 1: E = l^3 / (48 I) dW/dy, I = h w^3 / 12."""
+    return slope * SPAN**3 / (48.0 * THICKNESS * WIDTH**3 / 12.0)
+
+
+def reference_runs():
+    path = os.path.join(iceCases.SHARED, "data", "levelIceParametric.csv")
+    rows = [l for l in open(path) if not l.startswith("#")]
+    return list(csv.DictReader(rows))
+
+
+def run_one(ref, seed, out, particles, speed):
+    case = os.path.join(out, f"run{int(ref['run']):02d}_seed{seed}")
+    if not os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+        iceCases.copy_case(os.path.join(here, ".."), case)
+        ice = os.path.join(case, "constant", "iceProperties")
+        for entry in ("material.youngsModulus", "bondFamilies.ice.youngsModulus"):
+            iceCases.set_entry(ice, entry, ref["E_Pa"])
+        iceCases.set_entry(ice, "bondFamilies.ice.distFactor", ref["distFactor"])
+        iceCases.set_entry(ice, "bondFamilies.ice.breakN", ref["breakN"])
+        iceCases.set_entry(ice, "bondFamilies.ice.beta", ref["beta"])
+        iceCases.set_entry(ice, "damping.hystereticCoeffs.alpha", ref["alpha"])
+        iceCases.set_entry(ice, "maxBondsPerParticle", "40")
+        iceCases.set_entry(os.path.join(case, "constant", "beamProperties"), "packing.seed", seed)
+        iceCases.run_app("iceBeamDEM", case, 1, ["-particles", particles, "-platenSpeed", speed],
+                         "log.iceBeamDEM")
+    s = iceCases.summary(case)
+    return {
+        "run": int(ref["run"]), "seed": seed,
+        "slope": s["elastic_slope_N_per_m"], "Eeff": effective_modulus(s["elastic_slope_N_per_m"]),
+        "peak": s["peak_force_N"], "residual": iceCases.residual_strength(case),
+        "wall_s": s["wall_s"],
+    }
+
+
+def plot(refs, mean, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = [
+        ("5", "E_Pa", "particle modulus E [Pa]", "Eeff", "effective modulus [Pa]"),
+        ("6", "distFactor", "distFactor", "peak", "peak force [N]"),
+        ("7", "breakN", "breakN", "peak", "peak force [N]"),
+        ("8", "alpha", "hysteretic damping alpha", "residual", "mean force 30 mm after peak / peak"),
+    ]
+    ref_key = {"Eeff": "Eeff_Pa", "peak": "peak1_N"}
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
+    for ax, (figure, xkey, xlabel, ykey, ylabel) in zip(axes.flat, panels):
+        rows = [r for r in refs if r["figure"] == figure]
+        xs = [float(r[xkey]) for r in rows]
+        ax.plot(xs, [mean[int(r["run"])][ykey] for r in rows], "o-", label="this model (mean of 2 packings)")
+        if ykey in ref_key:
+            ax.plot(xs, [float(r[ref_key[ykey]]) for r in rows], "s--", label="reference DEM study")
+        if xkey in ("breakN", "alpha"):
+            ax.set_xscale("log")
+        if xkey == "breakN":
+            ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(f"reference figure {figure}")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Side-loaded level-ice beam, 1,200 particles: parametric trends")
+    fig.tight_layout()
+    fig.savefig(path + ".tmp.png", dpi=120)
+    os.replace(path + ".tmp.png", path)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("-jobs", type=int, default=2)
+    p.add_argument("-particles", default="1200")
+    p.add_argument("-platenSpeed", default="0.2")
+    p.add_argument("-out", default=os.path.join(here, "parametricSweep"))
+    a = p.parse_args()
+    refs = reference_runs()
+    os.makedirs(a.out, exist_ok=True)
+    tasks = [(r, seed) for r in refs for seed in (1, 2)]
+    results = []
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        futures = {pool.submit(run_one, r, s, a.out, a.particles, a.platenSpeed): (r, s) for r, s in tasks}
+        for done, f in enumerate(concurrent.futures.as_completed(futures), 1):
+            res = f.result()
+            results.append(res)
+            print(f"[{done}/{len(tasks)}] run {res['run']} seed {res['seed']}: peak {res['peak']:.4g} N, "
+                  f"Eeff {res['Eeff']:.3g} Pa, residual {res['residual']:.3f}, {res['wall_s']:.0f} s", flush=True)
+    mean = {}
+    for r in refs:
+        both = [x for x in results if x["run"] == int(r["run"])]
+        mean[int(r["run"])] = {k: sum(x[k] for x in both) / len(both) for k in ("slope", "Eeff", "peak", "residual", "wall_s")}
+    lines = ["figure,run,E_Pa,distFactor,breakN,alpha,beta,Eeff_Pa,peak_N,residual,ref_Eeff_Pa,ref_peak1_N"]
+    for r in refs:
+        m = mean[int(r["run"])]
+        lines.append(",".join([r["figure"], r["run"], r["E_Pa"], r["distFactor"], r["breakN"], r["alpha"], r["beta"],
+                               f"{m['Eeff']:.4g}", f"{m['peak']:.4g}", f"{m['residual']:.4f}", r["Eeff_Pa"], r["peak1_N"]]))
+    iceCases.write_atomically(os.path.join(a.out, "results.csv"), "\n".join(lines) + "\n")
+    plot(refs, mean, os.path.join(a.out, "parametricSweep.png"))
+    print(f"written {a.out}/results.csv and parametricSweep.png")
+
+
+if __name__ == "__main__":
+    main()
