@@ -182,22 +182,25 @@ FirstPeak firstPeak
 (
     const std::vector<double>& displacement,
     const std::vector<double>& force,
-    double dropFraction
+    double dropFraction,
+    double minFraction
 )
 {
     if (displacement.size() != force.size() || force.empty())
     {
         throw std::invalid_argument("firstPeak: displacement and force must be non-empty and of equal length");
     }
+    const double floor = minFraction * *std::max_element(force.begin(), force.end());
     FirstPeak best;
-    best.force = force[0];
-    for (std::size_t k = 1; k < force.size(); ++k)
+    bool candidate = false;
+    for (std::size_t k = 0; k < force.size(); ++k)
     {
-        if (force[k] > best.force)
+        if (force[k] >= floor && (!candidate || force[k] > best.force))
         {
             best = {force[k], displacement[k], k};
+            candidate = true;
         }
-        else if (best.force > 0.0 && force[k] <= (1.0 - dropFraction) * best.force)
+        else if (candidate && force[k] <= (1.0 - dropFraction) * best.force)
         {
             return best;
         }

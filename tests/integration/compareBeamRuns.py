@@ -33,11 +33,16 @@ def main(one, two):
     assert worst <= 1e-8, f"platen force differs by {worst:.3e} before any bond broke"
 
     peak_diff = abs(sa["peak_force_N"] - sb["peak_force_N"]) / sa["peak_force_N"]
-    na = sa["crack_pattern"]["broken_bonds"]
-    nb = sb["crack_pattern"]["broken_bonds"]
+    # After fracture the runs drift apart (chaotic) and stop at different
+    # times: compare the broken bonds well after failure, at 1.5 times the
+    # time of the peak.
+    peak_time = max(a, key=lambda r: r["force"])["time"]
+    last = min(k for k, r in enumerate(a) if r["time"] >= 1.5 * peak_time)
+    assert last < len(b), "the 2-rank run stopped before 1.5 times the time of the peak"
+    na, nb = a[last]["brokenBonds"], b[last]["brokenBonds"]
     count_diff = abs(na - nb) / max(na, 1)
     print(f"peak force {sa['peak_force_N']:.6g} vs {sb['peak_force_N']:.6g} N ({peak_diff:.2%}); "
-          f"broken bonds {na} vs {nb} ({count_diff:.2%})")
+          f"broken bonds at t = {a[last]['time']:.4g} s: {na:.0f} vs {nb:.0f} ({count_diff:.2%})")
     assert na > 0, "no bond broke: the comparison after fracture means nothing"
     assert peak_diff <= 0.02, "peak force differs by more than 2 %"
     assert count_diff <= 0.02, "broken-bond count differs by more than 2 %"

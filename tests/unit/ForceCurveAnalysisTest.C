@@ -173,6 +173,15 @@ TEST(ForceCurveFirstPeak, FirstMaximumFollowedByALargeDropNotTheGlobalOne)
     EXPECT_EQ(firstPeak(d, f, 0.2).force, 150.0);
 }
 
+TEST(ForceCurveFirstPeak, EarlyContactSpikeIsNotTheFirstPeak)
+{
+    // A 20 kN spike at first contact that drops by half, then the real rise.
+    const std::vector<double> d{0, 1, 2, 3, 4, 5, 6};
+    const std::vector<double> f{0, 20, 10, 60, 100, 80, 90};
+    EXPECT_EQ(firstPeak(d, f, 0.1).force, 100.0);
+    EXPECT_EQ(firstPeak(d, f, 0.1, 0.0).force, 20.0);
+}
+
 TEST(ForceCurveFirstPeak, MonotoneCurveGivesItsMaximum)
 {
     const std::vector<double> d{0, 1, 2};
