@@ -41,9 +41,7 @@ def _block_span(text, start, name):
     raise ValueError(f"unclosed dictionary {name}")
 
 
-def set_entry(path, dotted, value):
-    """Sets `a.b.key value;` in an OpenFOAM dictionary file (the entry must exist)."""
-    text = open(path).read()
+def _entry_value_span(text, dotted, path):
     *dicts, key = dotted.split(".")
     start, end = 0, len(text)
     for name in dicts:
@@ -53,10 +51,22 @@ def set_entry(path, dotted, value):
     for m in pattern.finditer(text, start, end):
         depth = text.count("{", start, m.start()) - text.count("}", start, m.start())
         if depth == 0:
-            text = text[:m.start(4)] + str(value) + text[m.end(4):]
-            open(path, "w").write(text)
-            return
+            return m.start(4), m.end(4)
     raise KeyError(f"{dotted} not found in {path}")
+
+
+def get_entry(path, dotted):
+    """The value text of `a.b.key value;` in an OpenFOAM dictionary file."""
+    text = open(path).read()
+    begin, end = _entry_value_span(text, dotted, path)
+    return text[begin:end]
+
+
+def set_entry(path, dotted, value):
+    """Sets `a.b.key value;` in an OpenFOAM dictionary file (the entry must exist)."""
+    text = open(path).read()
+    begin, end = _entry_value_span(text, dotted, path)
+    open(path, "w").write(text[:begin] + str(value) + text[end:])
 
 
 def copy_case(source, target):

@@ -12,6 +12,7 @@
 #include "TimeStep.H"
 
 #include "atom.h"
+#include "group.h"
 #include "fix.h"
 #include "lammps.h"
 
@@ -389,6 +390,45 @@ double BeamScene::localKineticEnergy() const
 }
 
 
+long BeamScene::freezeEjecta()
+{
+    // Without gravity or water nothing stops a piece that breaks off: a free
+    // particle that has flown well clear of the beam is stopped and fixed
+    // where it is (an absorbing far field), so that it never leaves the box.
+    const double clearance = 0.3;
+    const Vec3 lo(-clearance, -clearance - settings_.platenDiameter, -clearance);
+    const Vec3 hi
+    (
+        settings_.length + clearance,
+        settings_.width + settings_.maxTravel + clearance,
+        settings_.thickness + clearance
+    );
+    LAMMPS_NS::LAMMPS& engine = lmp_->engine();
+    LAMMPS_NS::Atom& atom = *engine.atom;
+    const int mobileBit = engine.group->bitmask[engine.group->find("mobile")];
+    long frozen = 0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (!(atom.mask[i] & mobileBit) || bonds_->bondCount(i) > 0)
+        {
+            continue;
+        }
+        const Vec3 x(atom.x[i][0], atom.x[i][1], atom.x[i][2]);
+        if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any())
+        {
+            atom.mask[i] &= ~mobileBit;
+            atom.type[i] = fixedType;
+            for (int k = 0; k < 3; ++k)
+            {
+                atom.v[i][k] = atom.omega[i][k] = 0.0;
+            }
+            ++frozen;
+        }
+    }
+    return sumOverRanks(comm_, frozen);
+}
+
+
 void BeamScene::collectBreakEvents()
 {
     const std::vector<BreakEvent> all = gatherBreakEvents(comm_, bonds_->takeLocalBreakEvents());
@@ -501,6 +541,13 @@ void BeamScene::run()
 
         // A blown-up run: NaN forces, lost bonds, or kinetic energy that the
         // platen never put in.
+        const long frozen = freezeEjecta();
+        if (frozen > 0)
+        {
+            frozenEjecta_ += frozen;
+            log(std::to_string(frozen) + " free particle(s) flew clear of the beam and were stopped "
+                "(absorbing far field; " + std::to_string(frozenEjecta_) + " in all)");
+        }
         std::string failure = bonds_->failure();
         const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
         if (failure.empty() && present != static_cast<long>(particles_.size()))
@@ -655,6 +702,7 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps)
     j << "]\n  },\n"
       << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
       << "  \"particles\": " << particles_.size() << ",\n"
+      << "  \"ejected_particles_stopped\": " << frozenEjecta_ << ",\n"
       << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
       << "  \"bonds_per_particle\": " << bondStats_.meanBondsPerParticle << ",\n"
       << "  \"steps\": " << steps << ",\n"

@@ -11,38 +11,31 @@ if a spring, a strength or the damping is wrong:
 
 usage: beamScaling.py CASE WORKDIR APP
 """
-import json
 import os
 import re
-import shutil
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
 
 case, work, app = sys.argv[1:4]
 common = ["-particles", "400", "-platenSpeed", "0.2"]
 
 
-def run(name, edits):
-    target = os.path.join(work, name)
-    shutil.rmtree(target, ignore_errors=True)
-    for sub in ("constant", "system", "DEM"):
-        shutil.copytree(os.path.join(case, sub), os.path.join(target, sub))
-    path = os.path.join(target, "constant", "iceProperties")
-    text = open(path).read()
-    for pattern, value in edits:
-        text, n = re.subn(pattern, value, text)
-        assert n > 0, f"no match for {pattern}"
-    open(path, "w").write(text)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    log = open(os.path.join(target, "log.iceBeamDEM"), "w")
-    subprocess.run(["mpirun", "-np", "1", app, "-case", target] + common,
-                   check=True, stdout=log, stderr=subprocess.STDOUT, env=env)
-    return json.load(open(os.path.join(target, "postProcessing", "summary.json")))
+def run(name, factors):
+    """Runs a copy of the case with dictionary entries multiplied by factors."""
+    target = iceCases.copy_case(case, os.path.join(work, name))
+    ice = os.path.join(target, "constant", "iceProperties")
+    for entry, factor in factors.items():
+        value = float(re.search(r"[-+0-9.eE]+", iceCases.get_entry(ice, entry)).group(0))
+        iceCases.set_entry(ice, entry, repr(value * factor))
+    iceCases.run_app(app, target, 1, common, "log.iceBeamDEM")
+    return iceCases.summary(target)
 
 
-base = run("base", [])
-stiff = run("doubleModulus", [(r"youngsModulus(\s+)5\.4e8", r"youngsModulus\g<1>1.08e9")])
-strong = run("breakN1.5", [(r"breakN(\s+)0\.0037", r"breakN\g<1>0.00555")])
+base = run("base", {})
+stiff = run("doubleModulus", {"material.youngsModulus": 2.0, "bondFamilies.ice.youngsModulus": 2.0})
+strong = run("breakN1.5", {"bondFamilies.ice.breakN": 1.5})
 
 checks = [
     ("slope x2 with modulus x2", stiff["elastic_slope_N_per_m"] / base["elastic_slope_N_per_m"], 2.0, 0.05),

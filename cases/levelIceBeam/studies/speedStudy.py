@@ -28,8 +28,8 @@ def run_one(out, particles, speed, ranks):
                          "log.iceBeamDEM")
     s = iceCases.summary(case)
     return dict(particles=int(particles), speed=float(speed), case=case, slope=s["elastic_slope_N_per_m"],
-                peak=s["peak_force_N"], wall=s["wall_s"], ke=s["kinetic_to_elastic_energy_at_peak"],
-                steps=s["steps"])
+                first=s["first_peak_force_N"], peak=s["peak_force_N"], wall=s["wall_s"],
+                ke=s["kinetic_to_elastic_energy_at_peak"], steps=s["steps"])
 
 
 def main():
@@ -45,8 +45,8 @@ def main():
         runs = list(pool.map(lambda t: run_one(a.out, t[0], t[1], a.ranks),
                              [(n, v) for n in a.particles for v in a.speeds]))
 
-    lines = ["particles,platen_speed_m_per_s,slope_N_per_m,peak_N,slope_error,peak_error,"
-             "kinetic_to_elastic_at_peak,steps,wall_s"]
+    lines = ["particles,platen_speed_m_per_s,slope_N_per_m,first_peak_N,peak_N,slope_error,first_peak_error,"
+             "peak_error,kinetic_to_elastic_at_peak,steps,wall_s"]
     chosen = {}
     for n in sorted({r["particles"] for r in runs}):
         group = sorted((r for r in runs if r["particles"] == n), key=lambda r: r["speed"])
@@ -54,21 +54,25 @@ def main():
         for r in group:
             r["slope_err"] = abs(r["slope"] / ref["slope"] - 1.0)
             r["peak_err"] = abs(r["peak"] / ref["peak"] - 1.0)
-            lines.append(f"{n},{r['speed']},{r['slope']:.5g},{r['peak']:.5g},{r['slope_err']:.4f},"
-                         f"{r['peak_err']:.4f},{r['ke']:.3g},{r['steps']},{r['wall']:.1f}")
-        ok = [r for r in group if r["peak_err"] <= 0.03]
+            r["first_err"] = abs(r["first"] / ref["first"] - 1.0)
+            lines.append(f"{n},{r['speed']},{r['slope']:.5g},{r['first']:.5g},{r['peak']:.5g},{r['slope_err']:.4f},"
+                         f"{r['first_err']:.4f},{r['peak_err']:.4f},{r['ke']:.3g},{r['steps']},{r['wall']:.1f}")
+        # The calibration targets are the slope and the first (centre-crack) peak.
+        ok = [r for r in group if max(r["first_err"], r["slope_err"], r["peak_err"]) <= 0.03]
         chosen[n] = max(ok, key=lambda r: r["speed"])
-        print(f"{n} particles: reference {ref['speed']} m/s, peak {ref['peak']:.4g} N; fastest within 3 %: "
-              f"{chosen[n]['speed']} m/s (peak error {chosen[n]['peak_err']:.2%}, {chosen[n]['wall']:.0f} s)")
+        print(f"{n} particles: reference {ref['speed']} m/s (first peak {ref['first']:.4g} N, peak {ref['peak']:.4g} N, "
+              f"slope {ref['slope']:.4g} N/m); fastest with slope, first peak and peak within 3 %: "
+              f"{chosen[n]['speed']} m/s ({chosen[n]['wall']:.0f} s against {ref['wall']:.0f} s)")
     iceCases.write_atomically(os.path.join(a.out, "results.csv"), "\n".join(lines) + "\n")
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 5))
     for n in sorted({r["particles"] for r in runs}):
         group = sorted((r for r in runs if r["particles"] == n), key=lambda r: r["speed"])[1:]
-        for ax, key, name in ((axes[0], "peak_err", "peak force"), (axes[1], "slope_err", "elastic slope")):
+        for ax, key, name in ((axes[0], "slope_err", "elastic slope"), (axes[1], "first_err", "first peak"),
+                              (axes[2], "peak_err", "peak force")):
             ax.loglog([r["wall"] for r in group], [max(r[key], 1e-4) for r in group], "o-", label=f"{n} particles")
             for r in group:
                 ax.annotate(f"{r['speed']} m/s", (r["wall"], max(r[key], 1e-4)), fontsize=7)

@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""Speed of the bonded-ice model, in one run on one core each:
+
+1. iceBeamDEM: the bonded beam (bonds in fix external, contacts in LIGGGHTS);
+2. the same packing, platen and contacts in plain LIGGGHTS, no bonds
+   (the `liggghts` binary on the scene's own input script);
+3. Yade's cohesive-frictional bonded model (CohFrictMat, ScGeom6D,
+   Law2_ScGeom6D_CohFrictPhys_CohesionMoment) on the same packing, time step,
+   pads and platen.
+
+    ./benchmark.py [-particles 13000] [-steps 2000]
+
+Reports particle-steps per second of the stepping loop (set-up excluded), the
+ratios, and peak resident memory (/usr/bin/time -v). Writes
+benchmark/benchmark.json (for programs) and benchmark/benchmark.md (for the README)."""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+
+
+def timed(cmd, cwd, log):
+    """Runs cmd under /usr/bin/time -v; returns (wall s, peak RSS MiB)."""
+    timing = os.path.join(cwd, log + ".time")
+    start = time.time()
+    with open(os.path.join(cwd, log), "w") as out:
+        r = subprocess.run(["/usr/bin/time", "-v", "-o", timing, *cmd], cwd=cwd, stdout=out,
+                           stderr=subprocess.STDOUT, env=ENV)
+    wall = time.time() - start
+    if r.returncode != 0:
+        raise RuntimeError(f"{cmd} failed, see {os.path.join(cwd, log)}")
+    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(timing).read()).group(1))
+    return wall, rss / 1024.0
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("-particles", type=int, default=13000)
+    p.add_argument("-steps", type=int, default=2000)
+    p.add_argument("-out", default=os.path.join(here, "benchmark"))
+    a = p.parse_args()
+    case = iceCases.copy_case(os.path.join(here, ".."), os.path.join(a.out, "case"))
+    app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
+    results = []
+
+    # 1. bonded
+    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", a.particles, "-steps", a.steps],
+                   case, "log.bonded")
+    s = iceCases.summary(case)
+    results.append({"model": "iceBeamDEM bonded (this project)", "particles": s["particles"], "bonds": s["bonds"],
+                    "steps": s["steps"], "dt": s["dt"], "loop_wall_s": s["loop_wall_s"],
+                    "particle_steps_per_s": s["particle_steps_per_s"], "peak_rss_MiB": rss})
+
+    # 2. plain LIGGGHTS granular, same packing and script, no bonds
+    bench = os.path.join(case, "DEM", "in.benchmarkGranular")
+    with open(bench, "w") as f:
+        f.write(f"include {case}/DEM/variables.generated\ninclude {case}/DEM/in.levelIceBeam\n"
+                f"thermo 0\nrun {a.steps}\n")
+    _, rss = timed(["liggghts", "-in", bench, "-log", os.path.join(case, "log.liggghts.granular")], case,
+                   "log.granular")
+    loop = re.search(r"Loop time of ([\d.e+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
+                     open(os.path.join(case, "log.granular")).read())
+    wall, steps, atoms = float(loop.group(1)), int(loop.group(2)), int(loop.group(3))
+    results.append({"model": "LIGGGHTS 3.8 granular contacts, no bonds", "particles": atoms, "bonds": 0,
+                    "steps": steps, "dt": s["dt"], "loop_wall_s": wall,
+                    "particle_steps_per_s": atoms * steps / wall, "peak_rss_MiB": rss})
+
+    # 3. Yade CohFrictMat bonded
+    yade_json = os.path.join(case, "yade.json")
+    _, rss = timed(["yade", "-j1", "-n", "-x", os.path.join(here, "yadeBondedBeam.py"),
+                    os.path.join(case, "DEM", "packing.data"), str(a.steps), repr(s["dt"]), yade_json],
+                   case, "log.yade")
+    y = json.load(open(yade_json))
+    results.append({"model": f"Yade {y['version']} CohFrictMat bonded", "particles": y["particles"],
+                    "bonds": y["bonds"], "steps": y["steps"], "dt": y["dt"], "loop_wall_s": y["loop_wall_s"],
+                    "particle_steps_per_s": y["particle_steps_per_s"], "peak_rss_MiB": rss})
+
+    bonded, granular, yade = results
+    report = {
+        "machine": os.uname().nodename, "cores_used": 1, "date": time.strftime("%Y-%m-%d %H:%M"),
+        "results": results,
+        "bonded_cost_over_granular": granular["particle_steps_per_s"] / bonded["particle_steps_per_s"],
+        "bonded_speedup_over_yade": bonded["particle_steps_per_s"] / yade["particle_steps_per_s"],
+    }
+    os.makedirs(a.out, exist_ok=True)
+    iceCases.write_atomically(os.path.join(a.out, "benchmark.json"), json.dumps(report, indent=2) + "\n")
+    lines = ["| model | particles | bonds | steps | loop wall [s] | particle-steps/s (1 core) | peak RSS [MiB] |",
+             "|---|---|---|---|---|---|---|"]
+    for r in results:
+        lines.append(f"| {r['model']} | {r['particles']} | {r['bonds']} | {r['steps']} | {r['loop_wall_s']:.1f} | "
+                     f"{r['particle_steps_per_s']:.3g} | {r['peak_rss_MiB']:.0f} |")
+    lines.append("")
+    lines.append(f"Bonded cost per particle-step / plain granular: {report['bonded_cost_over_granular']:.2f} "
+                 f"(limit 2.5). Bonded speed / Yade: {report['bonded_speedup_over_yade']:.2f}.")
+    iceCases.write_atomically(os.path.join(a.out, "benchmark.md"), "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
