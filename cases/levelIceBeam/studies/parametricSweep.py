@@ -3,7 +3,7 @@
 ../../../../shared/data/levelIceParametric.csv (E, distFactor, breakN, alpha,
 beta), each on two random packings (seeds 1 and 2) as the reference study did.
 
-    ./parametricSweep.py [-jobs 2] [-particles 1200] [-platenSpeed 0.2]
+    ./parametricSweep.py [-jobs 2] [-particles 1200] [-platenSpeed 0.2] [-seeds 1 2]
 
 Resumable: a run whose summary.json exists is not repeated. Writes
 parametricSweep/results.csv and parametricSweep/parametricSweep.png, the
@@ -73,7 +73,7 @@ def plot(refs, mean, path):
     for ax, (figure, xkey, xlabel, ykey, ylabel) in zip(axes.flat, panels):
         rows = [r for r in refs if r["figure"] == figure]
         xs = [float(r[xkey]) for r in rows]
-        ax.plot(xs, [mean[int(r["run"])][ykey] for r in rows], "o-", label="this model (mean of 2 packings)")
+        ax.plot(xs, [mean[int(r["run"])][ykey] for r in rows], "o-", label="this model")
         if ykey in ref_key:
             ax.plot(xs, [float(r[ref_key[ykey]]) for r in rows], "s--", label="reference DEM study")
         if xkey in ("breakN", "alpha"):
@@ -96,11 +96,12 @@ def main():
     p.add_argument("-jobs", type=int, default=2)
     p.add_argument("-particles", default="1200")
     p.add_argument("-platenSpeed", default="0.2")
+    p.add_argument("-seeds", nargs="+", type=int, default=[1, 2])
     p.add_argument("-out", default=os.path.join(here, "parametricSweep"))
     a = p.parse_args()
     refs = reference_runs()
     os.makedirs(a.out, exist_ok=True)
-    tasks = [(r, seed) for r in refs for seed in (1, 2)]
+    tasks = [(r, seed) for r in refs for seed in a.seeds]
     results = []
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         futures = {pool.submit(run_one, r, s, a.out, a.particles, a.platenSpeed): (r, s) for r, s in tasks}
