@@ -1,4 +1,5 @@
 #include "BondBuilder.H"
+#include "CellGrid.H"
 #include "InputError.H"
 
 #include <algorithm>
@@ -15,132 +16,6 @@ namespace
 {
 
 const char* const propertiesFile = "constant/iceProperties";
-
-//- Uniform grid over the particle centres with cells at least `reach` wide, so that every pair
-//  closer than reach lies in the same or adjacent cells.
-class CellGrid
-{
-public:
-    CellGrid(const std::vector<ParticleSpec>& particles, double reach)
-    {
-        Vec3 lo = particles.front().position;
-        Vec3 hi = lo;
-        for (const ParticleSpec& p : particles)
-        {
-            lo = lo.cwiseMin(p.position);
-            hi = hi.cwiseMax(p.position);
-        }
-        lo_ = lo;
-        chooseCells(hi - lo, reach, particles.size());
-        fill(particles);
-    }
-
-    //- Call f(i, j) once for every unordered pair in the same or adjacent cells.
-    template<class PairFunction>
-    void forEachPair(PairFunction f) const
-    {
-        for (long cz = 0; cz < n_[2]; ++cz)
-        for (long cy = 0; cy < n_[1]; ++cy)
-        for (long cx = 0; cx < n_[0]; ++cx)
-        {
-            const long c = index(cx, cy, cz);
-            for (long a = start_[c]; a < start_[c + 1]; ++a)
-            {
-                const int i = items_[a];
-                for (long b = a + 1; b < start_[c + 1]; ++b)
-                {
-                    f(i, items_[b]);
-                }
-                // Half stencil: the 13 neighbours with a larger (z, y, x) index.
-                for (int dz = 0; dz <= 1; ++dz)
-                for (int dy = (dz == 0 ? 0 : -1); dy <= 1; ++dy)
-                for (int dx = (dz == 0 && dy == 0 ? 1 : -1); dx <= 1; ++dx)
-                {
-                    const long nx = cx + dx, ny = cy + dy, nz = cz + dz;
-                    if (nx < 0 || ny < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
-                    {
-                        continue;
-                    }
-                    const long d = index(nx, ny, nz);
-                    for (long b = start_[d]; b < start_[d + 1]; ++b)
-                    {
-                        f(i, items_[b]);
-                    }
-                }
-            }
-        }
-    }
-
-private:
-    //- Cells of at least `reach`; coarser when a sparse cloud would need far more cells than
-    //  particles.
-    void chooseCells(const Vec3& extent, double reach, std::size_t count)
-    {
-        const double maxCells = 8.0*count + 64.0;
-        double size = reach;
-        while (true)
-        {
-            double cells = 1.0;
-            for (int k = 0; k < 3; ++k)
-            {
-                n_[k] = std::max(1L, static_cast<long>(std::floor(extent[k]/size)));
-                cells *= n_[k];
-            }
-            if (cells <= maxCells)
-            {
-                break;
-            }
-            size *= 2.0;
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-            invSize_[k] = extent[k] > 0.0 ? n_[k]/extent[k] : 0.0;
-        }
-    }
-
-    void fill(const std::vector<ParticleSpec>& particles)
-    {
-        const long nCells = n_[0]*n_[1]*n_[2];
-        std::vector<long> cellOf(particles.size());
-        start_.assign(nCells + 1, 0);
-        for (std::size_t i = 0; i < particles.size(); ++i)
-        {
-            cellOf[i] = cellIndex(particles[i].position);
-            ++start_[cellOf[i] + 1];
-        }
-        for (long c = 0; c < nCells; ++c)
-        {
-            start_[c + 1] += start_[c];
-        }
-        items_.resize(particles.size());
-        std::vector<long> next(start_.begin(), start_.end() - 1);
-        for (std::size_t i = 0; i < particles.size(); ++i)
-        {
-            items_[next[cellOf[i]]++] = static_cast<int>(i);
-        }
-    }
-
-    long index(long x, long y, long z) const
-    {
-        return x + n_[0]*(y + n_[1]*z);
-    }
-
-    long cellIndex(const Vec3& p) const
-    {
-        long c[3];
-        for (int k = 0; k < 3; ++k)
-        {
-            c[k] = std::min(n_[k] - 1, std::max(0L, static_cast<long>((p[k] - lo_[k])*invSize_[k])));
-        }
-        return index(c[0], c[1], c[2]);
-    }
-
-    Vec3 lo_;
-    long n_[3];
-    double invSize_[3];
-    std::vector<long> start_;
-    std::vector<int> items_;
-};
 
 void checkParticles(const std::vector<ParticleSpec>& particles)
 {
@@ -211,13 +86,21 @@ std::vector<BondPair> BondBuilder::build(const std::vector<ParticleSpec>& partic
         return bonds;
     }
 
+    std::vector<Vec3> positions(particles.size());
+    Vec3 lo = particles.front().position;
+    Vec3 hi = lo;
     double maxRadius = 0.0;
-    for (const ParticleSpec& p : particles)
+    for (std::size_t i = 0; i < particles.size(); ++i)
     {
-        maxRadius = std::max(maxRadius, p.radius);
+        positions[i] = particles[i].position;
+        lo = lo.cwiseMin(positions[i]);
+        hi = hi.cwiseMax(positions[i]);
+        maxRadius = std::max(maxRadius, particles[i].radius);
     }
     const double maxFactor = *std::max_element(distFactors_.begin(), distFactors_.end());
-    const CellGrid grid(particles, 2.0*maxFactor*maxRadius);
+    // Coarser cells for a sparse cloud, which would otherwise need far more cells than particles.
+    CellGrid grid(lo, hi, 2.0*maxFactor*maxRadius, 8.0*particles.size() + 64.0);
+    grid.build(positions);
 
     grid.forEachPair([&](int a, int b)
     {

@@ -1,5 +1,7 @@
 #include "RandomPacking.H"
 
+#include "CellGrid.H"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -132,105 +134,6 @@ Vec3 pairDirection(int i, int j)
     const double s = std::sqrt(1.0 - z*z);
     return Vec3(s*std::cos(phi), s*std::sin(phi), z);
 }
-
-//- Uniform cell grid over the box, rebuilt by counting sort: items of cell c are
-//  items[start[c] .. start[c+1]).
-class CellGrid
-{
-public:
-    CellGrid(const Vec3& lo, const Vec3& hi, double minCellSize)
-    :
-        lo_(lo)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            n_[k] = std::max(1, static_cast<int>(std::floor((hi[k] - lo[k])/minCellSize)));
-            invSize_[k] = n_[k]/(hi[k] - lo[k]);
-        }
-    }
-
-    void build(const std::vector<Vec3>& positions)
-    {
-        const int nCells = n_[0]*n_[1]*n_[2];
-        cellOf_.resize(positions.size());
-        start_.assign(nCells + 1, 0);
-        for (std::size_t i = 0; i < positions.size(); ++i)
-        {
-            cellOf_[i] = cellIndex(positions[i]);
-            ++start_[cellOf_[i] + 1];
-        }
-        for (int c = 0; c < nCells; ++c)
-        {
-            start_[c + 1] += start_[c];
-        }
-        items_.resize(positions.size());
-        std::vector<int> fill(start_.begin(), start_.end() - 1);
-        for (std::size_t i = 0; i < positions.size(); ++i)
-        {
-            items_[fill[cellOf_[i]]++] = static_cast<int>(i);
-        }
-    }
-
-    //- Call f(i, j) once for every pair in the same or adjacent cells, which includes every pair
-    //  closer than the cell size. Fixed order: deterministic.
-    template<class PairFunction>
-    void forEachPair(PairFunction f) const
-    {
-        for (int cz = 0; cz < n_[2]; ++cz)
-        for (int cy = 0; cy < n_[1]; ++cy)
-        for (int cx = 0; cx < n_[0]; ++cx)
-        {
-            const int c = index(cx, cy, cz);
-            for (int a = start_[c]; a < start_[c + 1]; ++a)
-            {
-                const int i = items_[a];
-                for (int b = a + 1; b < start_[c + 1]; ++b)
-                {
-                    f(i, items_[b]);
-                }
-                // Half stencil: the 13 neighbours with a larger (z, y, x) index.
-                for (int dz = 0; dz <= 1; ++dz)
-                for (int dy = (dz == 0 ? 0 : -1); dy <= 1; ++dy)
-                for (int dx = (dz == 0 && dy == 0 ? 1 : -1); dx <= 1; ++dx)
-                {
-                    const int nx = cx + dx, ny = cy + dy, nz = cz + dz;
-                    if (nx < 0 || ny < 0 || nx >= n_[0] || ny >= n_[1] || nz >= n_[2])
-                    {
-                        continue;
-                    }
-                    const int d = index(nx, ny, nz);
-                    for (int b = start_[d]; b < start_[d + 1]; ++b)
-                    {
-                        f(i, items_[b]);
-                    }
-                }
-            }
-        }
-    }
-
-private:
-    int index(int x, int y, int z) const
-    {
-        return x + n_[0]*(y + n_[1]*z);
-    }
-
-    int cellIndex(const Vec3& p) const
-    {
-        int c[3];
-        for (int k = 0; k < 3; ++k)
-        {
-            c[k] = std::min(n_[k] - 1, std::max(0, static_cast<int>((p[k] - lo_[k])*invSize_[k])));
-        }
-        return index(c[0], c[1], c[2]);
-    }
-
-    Vec3 lo_;
-    int n_[3];
-    double invSize_[3];
-    std::vector<int> cellOf_;
-    std::vector<int> start_;
-    std::vector<int> items_;
-};
 
 //- Verlet list of the pairs closer than r_i + r_j + skin; rebuilt when a particle has moved more
 //  than skin/2 since the last build. Radii only shrink, so a list stays complete until then.
