@@ -1,5 +1,7 @@
 #include "BeamScene.H"
 
+#include "Checkpoint.H"
+
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "ForceCurveAnalysis.H"
@@ -13,6 +15,7 @@
 
 #include "atom.h"
 #include "group.h"
+#include "update.h"
 #include "fix.h"
 #include "lammps.h"
 
@@ -62,7 +65,7 @@ BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
 {
     BeamSceneOptions o;
     const std::string usage =
-        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S] [-steps N]";
+        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S] [-steps N] [-resume]";
     for (int k = 1; k < argc; ++k)
     {
         const std::string arg = argv[k];
@@ -80,6 +83,7 @@ BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
             else if (arg == "-particles") o.particles = std::stoi(value());
             else if (arg == "-platenSpeed") o.platenSpeed = std::stod(value());
             else if (arg == "-steps") o.steps = std::stol(value());
+            else if (arg == "-resume") o.resume = true;
             else if (arg == "-help" || arg == "--help")
             {
                 std::cout << usage << std::endl;
@@ -165,13 +169,14 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval"
+        "sampleInterval", "writeInterval", "checkpointInterval"
     });
     s.maxTravel = positive(control, "maxTravel", 0, true);
     s.stopAfterHalfLoad = control.getBoolOrDefault("stopAfterHalfLoad", true);
     s.travelAfterHalfLoad = control.getScalarOrDefault("travelAfterHalfLoad", 0.005);
     s.sampleInterval = positive(control, "sampleInterval", 2e-4, false);
     s.writeInterval = positive(control, "writeInterval", 0.01, false);
+    s.checkpointInterval = positive(control, "checkpointInterval", 0.02, false);
     if (s.sampleInterval > s.writeInterval)
     {
         control.fail("sampleInterval", "must not exceed writeInterval");
@@ -288,7 +293,7 @@ void BeamScene::writeLiggghtsInputs() const
 }
 
 
-void BeamScene::startLiggghts()
+void BeamScene::startLiggghts(const Checkpoint* resume)
 {
     LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
     lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
@@ -316,7 +321,10 @@ void BeamScene::startLiggghts()
         gt = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * kt);
     }
 
-    lmp.setVariable("dataFile", path("DEM/packing.data"));
+    const std::string readParticles = resume
+        ? "read_restart " + path("DEM/checkpoint/liggghts.restart")
+        : "read_data " + path("DEM/packing.data");
+    lmp.setVariable("readParticles", "\"" + readParticles + "\"");
     lmp.setVariable("platenStl", path("DEM/platen.stl"));
     lmp.setVariable("ghostCutoff", ghostCutoff);
     lmp.setVariable("neighbourSkin", skin);
@@ -336,7 +344,8 @@ void BeamScene::startLiggghts()
         std::ostringstream vars;
         vars << std::setprecision(17) << "# written by iceBeamDEM\n";
         for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
-                 {"dataFile", path("DEM/packing.data")}, {"platenStl", path("DEM/platen.stl")},
+                 {"readParticles", "\"read_data " + path("DEM/packing.data") + "\""},
+                 {"platenStl", path("DEM/platen.stl")},
                  {"ghostCutoff", number(ghostCutoff)}, {"neighbourSkin", number(skin)},
                  {"kn", number(contactStiffness_)}, {"kt", number(kt)}, {"gn", number(gn)},
                  {"gt", number(gt)}, {"mu", number(ice_.material.frictionCoefficient)},
@@ -361,7 +370,24 @@ void BeamScene::startLiggghts()
     // LIGGGHTS' set-up of the first run resets property/atom values to their
     // defaults, so the bonds are stored after it.
     lmp.command("run 0");
-    bonds_->createBonds(particles_, bondPairs_);
+    if (resume)
+    {
+        // LIGGGHTS restores the step number but restarts its clock at zero.
+        LAMMPS_NS::Update& update = *lmp.engine().update;
+        if (update.ntimestep != resume->state.steps)
+        {
+            throw RunError(path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
+                + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
+                + std::to_string(resume->state.steps) + "; delete the folder and start again");
+        }
+        update.atime = resume->state.steps * dt_;
+        update.atimestep = update.ntimestep;
+        bonds_->restoreBonds(resume->bonds);
+    }
+    else
+    {
+        bonds_->createBonds(particles_, bondPairs_);
+    }
     lmp.command("run 0");   // forces of the first step with the bonds in place
 }
 
@@ -489,21 +515,102 @@ void BeamScene::writeFrame(int frame)
 }
 
 
+void BeamScene::writeCheckpoint(const LoadingState& state)
+{
+    // LIGGGHTS' restart first (particles, contacts, platen), then ours; a
+    // checkpoint counts only when both are complete, and ours names the step.
+    const std::string dir = path("DEM/checkpoint");
+    if (rank_ == 0)
+    {
+        std::filesystem::create_directories(dir);
+    }
+    MPI_Barrier(comm_);
+    lmp_->command("write_restart " + dir + "/liggghts.restart.tmp");
+    const std::vector<BondState> local = bonds_->localBondStates();
+    std::vector<double> flat;
+    for (const BondState& b : local)
+    {
+        flat.insert(flat.end(), {double(b.tagA), double(b.tagB), double(static_cast<int>(b.family)),
+            b.restLength, b.shearDisplacement.x(), b.shearDisplacement.y(), b.shearDisplacement.z(),
+            b.twistAngle, b.bendingAngle.x(), b.bendingAngle.y(), b.bendingAngle.z(),
+            b.tensileStrength, b.shearStrength});
+    }
+    const std::vector<double> all = gatherDoubles(comm_, flat);
+    if (rank_ == 0)
+    {
+        Checkpoint c;
+        c.state = state;
+        c.curveColumns = curve_.columns();
+        for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
+        c.breaks = breakage_.events();
+        for (std::size_t k = 0; k + 12 < all.size(); k += 13)
+        {
+            BondState b;
+            b.tagA = static_cast<long>(all[k]);
+            b.tagB = static_cast<long>(all[k + 1]);
+            b.family = static_cast<BondFamily>(static_cast<int>(all[k + 2]));
+            b.restLength = all[k + 3];
+            b.shearDisplacement = Vec3(all[k + 4], all[k + 5], all[k + 6]);
+            b.twistAngle = all[k + 7];
+            b.bendingAngle = Vec3(all[k + 8], all[k + 9], all[k + 10]);
+            b.tensileStrength = all[k + 11];
+            b.shearStrength = all[k + 12];
+            c.bonds.push_back(b);
+        }
+        std::filesystem::rename(dir + "/liggghts.restart.tmp", dir + "/liggghts.restart");
+        c.write(dir + "/iceBeamDEM.checkpoint");
+    }
+    MPI_Barrier(comm_);
+}
+
+
 void BeamScene::run()
 {
     const auto wallStart = std::chrono::steady_clock::now();
     log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
         + std::to_string(ranks_) + " rank(s)");
     buildParticles();
+
+    std::unique_ptr<Checkpoint> resume;
+    if (options_.resume)
+    {
+        resume = std::make_unique<Checkpoint>(Checkpoint::read(path("DEM/checkpoint/iceBeamDEM.checkpoint")));
+        if (resume->state.dt != dt_)
+        {
+            throw InputError(path("constant/iceProperties"), "timeStep",
+                "the time step (" + number(dt_) + " s) differs from the checkpoint's ("
+                + number(resume->state.dt) + " s): the inputs changed since it was written");
+        }
+    }
     writeLiggghtsInputs();
     MPI_Barrier(comm_);
-    startLiggghts();
+    startLiggghts(resume.get());
+
+    LoadingState st;
+    st.dt = dt_;
+    if (resume)
+    {
+        st = resume->state;
+        for (const auto& row : resume->curveRows) curve_.addRow(row);
+        for (const BreakEvent& e : resume->breaks) breakage_.append(e);
+        kineticToElasticAtPeak_ = st.kineticToElasticAtPeak;
+        frozenEjecta_ = st.frozenEjecta;
+        particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/particles.pvd")));
+        bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/bonds.pvd")));
+        // Frames written after the checkpoint by the killed run are redone.
+        particlesPvd_->removeAfter(lmp_->time() + 0.5 * dt_);
+        bondsPvd_->removeAfter(lmp_->time() + 0.5 * dt_);
+        log("Resumed from the checkpoint at step " + std::to_string(st.steps) + ", time "
+            + number(lmp_->time()) + " s");
+    }
 
     const double speed = settings_.platenSpeed;
     const long stepsPerSample =
         std::max(1L, std::lround(settings_.sampleInterval / (speed * dt_)));
     const long samplesPerFrame =
         std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
+    const long samplesPerCheckpoint =
+        std::max(1L, std::lround(settings_.checkpointInterval / settings_.sampleInterval));
     const long maxSteps = options_.steps > 0
         ? options_.steps
         : std::lround((settings_.maxTravel + settings_.initialGap) / (speed * dt_));
@@ -513,24 +620,25 @@ void BeamScene::run()
          << maxSteps << " steps (" << settings_.maxTravel * 1e3 << " mm of travel after contact)";
     log(plan.str());
 
-    double peak = 0.0, travelAtPeak = 0.0, platenWork = 0.0, previousForce = 0.0;
-    double halfLoadTravel = -1.0;
-    long steps = 0;
-    int frame = 0;
     auto lastLog = std::chrono::steady_clock::now();
-    writeFrame(frame++);
+    if (!resume)
+    {
+        writeFrame(st.frame++);
+    }
+    const long firstStep = st.steps;
     const auto loopStart = std::chrono::steady_clock::now();
 
-    for (long sample = 1; steps < maxSteps; ++sample)
+    while (st.steps < maxSteps)
     {
-        const long chunk = std::min(stepsPerSample, maxSteps - steps);
+        const long chunk = std::min(stepsPerSample, maxSteps - st.steps);
         lmp_->command("run " + std::to_string(chunk) + " pre no post no");
-        steps += chunk;
+        st.steps += chunk;
+        ++st.sample;
 
         const double travel = speed * lmp_->time();
         const double force = platenForce();
-        platenWork += 0.5 * (force + previousForce) * speed * chunk * dt_;
-        previousForce = force;
+        st.platenWork += 0.5 * (force + st.previousForce) * speed * chunk * dt_;
+        st.previousForce = force;
         const double kinetic = sumOverRanks(comm_, localKineticEnergy());
         const double elastic = sumOverRanks(comm_, bonds_->localBondEnergy());
         collectBreakEvents();
@@ -539,8 +647,6 @@ void BeamScene::run()
             lmp_->time(), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic
         });
 
-        // A blown-up run: NaN forces, lost bonds, or kinetic energy that the
-        // platen never put in.
         const long frozen = freezeEjecta();
         if (frozen > 0)
         {
@@ -548,88 +654,103 @@ void BeamScene::run()
             log(std::to_string(frozen) + " free particle(s) flew clear of the beam and were stopped "
                 "(absorbing far field; " + std::to_string(frozenEjecta_) + " in all)");
         }
-        std::string failure = bonds_->failure();
-        const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
-        if (failure.empty() && present != static_cast<long>(particles_.size()))
-        {
-            failure = std::to_string(particles_.size() - present) + " particle(s) left the simulation box by time "
-                + number(lmp_->time()) + " s (step " + std::to_string(lmp_->step()) + ")";
-        }
-        int failed = failure.empty() ? 0 : 1, anyFailed = 0;
-        MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
-        if (anyFailed == 0 && kinetic > 2.0 * std::abs(platenWork) + 1e-6)
-        {
-            std::ostringstream msg;
-            msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
-                << platenWork << " J) at time " << lmp_->time() << " s, step " << lmp_->step()
-                << ": the run is unstable (lower timeStep.factor)";
-            failure = msg.str();
-            anyFailed = 1;
-        }
-        if (anyFailed)
-        {
-            curve_.write(path("postProcessing/platenForce.csv"));
-            throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
-        }
+        checkHealth(kinetic, st.platenWork);
 
-        if (force > peak)
+        if (force > st.peak)
         {
-            peak = force;
-            travelAtPeak = travel;
+            st.peak = force;
+            st.travelAtPeak = travel;
             kineticToElasticAtPeak_ = elastic > 0.0 ? kinetic / elastic : 0.0;
         }
         // Half load counts once the force stays below it; a dip that recovers
         // (noise, a crack that arrests) does not.
-        if (force >= 0.5 * peak)
+        if (force >= 0.5 * st.peak)
         {
-            halfLoadTravel = -1.0;
+            st.halfLoadTravel = -1.0;
         }
-        else if (halfLoadTravel < 0.0 && peak > 0.0)
+        else if (st.halfLoadTravel < 0.0 && st.peak > 0.0)
         {
-            halfLoadTravel = travel;
+            st.halfLoadTravel = travel;
         }
+        const bool done = settings_.stopAfterHalfLoad && st.halfLoadTravel > 0.0
+            && travel > st.halfLoadTravel + settings_.travelAfterHalfLoad;
 
-        if (sample % samplesPerFrame == 0)
+        if (st.sample % samplesPerFrame == 0)
         {
-            writeFrame(frame++);
+            writeFrame(st.frame++);
+        }
+        if (st.sample % samplesPerCheckpoint == 0 && !done && st.steps < maxSteps)
+        {
+            st.kineticToElasticAtPeak = kineticToElasticAtPeak_;
+            st.frozenEjecta = frozenEjecta_;
+            writeCheckpoint(st);
         }
 
         const auto now = std::chrono::steady_clock::now();
-        const double elapsed = std::chrono::duration<double>(now - wallStart).count();
         if (std::chrono::duration<double>(now - lastLog).count() > 10.0)
         {
             lastLog = now;
-            const double remaining = elapsed / steps * (maxSteps - steps);
+            const double elapsed = std::chrono::duration<double>(now - loopStart).count();
+            const double remaining = elapsed / (st.steps - firstStep) * (maxSteps - st.steps);
             std::ostringstream line;
             line << std::fixed << std::setprecision(1) << "t = " << lmp_->time() * 1e3 << " ms"
                  << "  travel " << travel * 1e3 << " mm  force " << force * 1e-3 << " kN"
-                 << "  peak " << peak * 1e-3 << " kN  broken " << breakage_.size()
-                 << "  " << std::setprecision(0) << steps * particles_.size() / elapsed
+                 << "  peak " << st.peak * 1e-3 << " kN  broken " << breakage_.size()
+                 << "  " << std::setprecision(0) << (st.steps - firstStep) * particles_.size() / elapsed
                  << " particle-steps/s  ETA <= " << formatDuration(remaining);
             log(line.str());
         }
 
-        if (settings_.stopAfterHalfLoad && halfLoadTravel > 0.0
-            && travel > halfLoadTravel + settings_.travelAfterHalfLoad)
+        if (done)
         {
-            log("Load has stayed below half the peak " + number(peak * 1e-3) + " kN since "
-                + number((halfLoadTravel - travelAtPeak) * 1e3) + " mm after it: stopping");
+            log("Load has stayed below half the peak " + number(st.peak * 1e-3) + " kN since "
+                + number((st.halfLoadTravel - st.travelAtPeak) * 1e3) + " mm after it: stopping");
             break;
         }
     }
 
     const double loop =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
-    writeFrame(frame++);
+    writeFrame(st.frame++);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    writeSummary(wall, loop, steps);
-    log("End: " + std::to_string(steps) + " steps in " + formatDuration(wall) + ", "
+    writeSummary(wall, loop, st.steps, st.steps - firstStep);
+    log("End: " + std::to_string(st.steps) + " steps in " + formatDuration(wall) + ", "
         + std::to_string(breakage_.size()) + " bonds broken");
 }
 
 
-void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps) const
+void BeamScene::checkHealth(double kinetic, double platenWork)
+{
+    // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
+    // that the platen never put in.
+    std::string failure = bonds_->failure();
+    const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
+    if (failure.empty() && present != static_cast<long>(particles_.size()))
+    {
+        failure = std::to_string(particles_.size() - present) + " particle(s) left the simulation box by time "
+            + number(lmp_->time()) + " s (step " + std::to_string(lmp_->step()) + ")";
+    }
+    int failed = failure.empty() ? 0 : 1, anyFailed = 0;
+    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
+    if (anyFailed == 0 && kinetic > 2.0 * std::abs(platenWork) + 1e-6)
+    {
+        std::ostringstream msg;
+        msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
+            << platenWork << " J) at time " << lmp_->time() << " s, step " << lmp_->step()
+            << ": the run is unstable (lower timeStep.factor)";
+        failure = msg.str();
+        anyFailed = 1;
+    }
+    if (anyFailed)
+    {
+        curve_.write(path("postProcessing/platenForce.csv"));
+        throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
+    }
+}
+
+
+void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps, long loopSteps) const
 {
     if (rank_ != 0)
     {
@@ -710,7 +831,7 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps)
       << "  \"ranks\": " << ranks_ << ",\n"
       << "  \"wall_s\": " << wallSeconds << ",\n"
       << "  \"loop_wall_s\": " << loopSeconds << ",\n"
-      << "  \"particle_steps_per_s\": " << steps * particles_.size() / loopSeconds << "\n"
+      << "  \"particle_steps_per_s\": " << loopSteps * particles_.size() / loopSeconds << "\n"
       << "}\n";
     writeFileAtomically(path("postProcessing/summary.json"), j.str());
 

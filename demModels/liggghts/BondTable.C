@@ -144,6 +144,13 @@ bool BondTable::add(int i, const BondState& b, long ownTag)
 }
 
 
+void BondTable::clear(int i)
+{
+    double* s = slots(i);
+    std::fill(s, s + capacity_ * slotSize, 0.0);
+}
+
+
 void BondTable::remove(int i, int slot)
 {
     double* s = slots(i);

@@ -97,7 +97,6 @@ void IceBondForces::createBonds
     const std::vector<BondPair>& pairs
 )
 {
-    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     auto spec = [&](int index)
     {
         ParticleState p;
@@ -105,28 +104,72 @@ void IceBondForces::createBonds
         p.radius = particles[index].radius;
         return p;
     };
+    std::vector<BondState> states;
+    states.reserve(pairs.size());
     for (const BondPair& pair : pairs)
     {
-        const long tagA = pair.i + 1;
-        const long tagB = pair.j + 1;
-        const BondState state =
-            models_[static_cast<int>(pair.family)].create(tagA, tagB, spec(pair.i), spec(pair.j));
-        for (long own : {tagA, tagB})
+        states.push_back
+        (
+            models_[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, spec(pair.i), spec(pair.j))
+        );
+    }
+    for (const BondState& state : states)
+    {
+        store(state);
+    }
+}
+
+
+void IceBondForces::restoreBonds(const std::vector<BondState>& states)
+{
+    for (int i = 0; i < lmp_.engine().atom->nlocal; ++i)
+    {
+        table_.clear(i);
+    }
+    for (const BondState& state : states)
+    {
+        store(state);
+    }
+}
+
+
+void IceBondForces::store(const BondState& state)
+{
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    for (long own : {state.tagA, state.tagB})
+    {
+        const int local = atom.map(static_cast<int>(own));
+        if (local < 0 || local >= atom.nlocal)
         {
-            const int local = atom.map(static_cast<int>(own));
-            if (local < 0 || local >= atom.nlocal)
+            continue;
+        }
+        if (!table_.add(local, state, own))
+        {
+            std::ostringstream msg;
+            msg << "particle " << own << " needs more than " << table_.capacity()
+                << " bonds; raise maxBondsPerParticle or lower distFactor";
+            throw InputError("constant/iceProperties", "maxBondsPerParticle", msg.str());
+        }
+    }
+}
+
+
+std::vector<BondState> IceBondForces::localBondStates() const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    std::vector<BondState> states;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const int n = table_.count(i);
+        for (int slot = 0; slot < n; ++slot)
+        {
+            if (atom.tag[i] < table_.partner(i, slot))
             {
-                continue;
-            }
-            if (!table_.add(local, state, own))
-            {
-                std::ostringstream msg;
-                msg << "particle " << own << " needs more than " << table_.capacity()
-                    << " bonds; raise maxBondsPerParticle or lower distFactor";
-                throw InputError("constant/iceProperties", "maxBondsPerParticle", msg.str());
+                states.push_back(table_.read(i, slot, atom.tag[i]));
             }
         }
     }
+    return states;
 }
 
 
@@ -281,20 +324,10 @@ std::vector<BreakEvent> IceBondForces::takeLocalBreakEvents()
 
 std::vector<BondLink> IceBondForces::localLinks() const
 {
-    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     std::vector<BondLink> links;
-    for (int i = 0; i < atom.nlocal; ++i)
+    for (const BondState& s : localBondStates())
     {
-        const int n = table_.count(i);
-        for (int slot = 0; slot < n; ++slot)
-        {
-            const long partnerTag = table_.partner(i, slot);
-            if (atom.tag[i] < partnerTag)
-            {
-                const BondState s = table_.read(i, slot, atom.tag[i]);
-                links.push_back({s.tagA, s.tagB, static_cast<int>(s.family)});
-            }
-        }
+        links.push_back({s.tagA, s.tagB, static_cast<int>(s.family)});
     }
     return links;
 }
