@@ -40,6 +40,14 @@ int main(int argc, char** argv)
         }
         status = 1;   // every rank reads the same input and stops here alike
     }
+    catch (const iceDEM::RunError& e)
+    {
+        if (rank == 0)
+        {
+            std::cerr << "\n--> iceBeamDEM FATAL ERROR\n    " << e.what() << "\n" << std::endl;
+        }
+        status = 3;   // found by every rank together (health checks are collective)
+    }
     catch (const std::exception& e)
     {
         std::cerr << "\n--> iceBeamDEM FATAL ERROR (rank " << rank << ")\n    " << e.what() << "\n" << std::endl;

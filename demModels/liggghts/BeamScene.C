@@ -418,9 +418,10 @@ double BeamScene::localKineticEnergy() const
 
 long BeamScene::freezeEjecta()
 {
-    // Without gravity or water nothing stops a piece that breaks off: a free
-    // particle that has flown well clear of the beam is stopped and fixed
-    // where it is (an absorbing far field), so that it never leaves the box.
+    // Without gravity or water nothing stops a piece that breaks off: a
+    // particle that has flown well clear of the beam (alone or in a bonded
+    // fragment) is stopped and fixed where it is (an absorbing far field), so
+    // that it never leaves the box.
     const double clearance = 0.3;
     const Vec3 lo(-clearance, -clearance - settings_.platenDiameter, -clearance);
     const Vec3 hi
@@ -435,7 +436,7 @@ long BeamScene::freezeEjecta()
     long frozen = 0;
     for (int i = 0; i < atom.nlocal; ++i)
     {
-        if (!(atom.mask[i] & mobileBit) || bonds_->bondCount(i) > 0)
+        if (!(atom.mask[i] & mobileBit))
         {
             continue;
         }
@@ -651,7 +652,7 @@ void BeamScene::run()
         if (frozen > 0)
         {
             frozenEjecta_ += frozen;
-            log(std::to_string(frozen) + " free particle(s) flew clear of the beam and were stopped "
+            log(std::to_string(frozen) + " particle(s) flew clear of the beam and were stopped "
                 "(absorbing far field; " + std::to_string(frozenEjecta_) + " in all)");
         }
         checkHealth(kinetic, st.platenWork);
