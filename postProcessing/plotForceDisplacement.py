@@ -198,6 +198,12 @@ def annotate_simulation(ax, summary):
             ax.annotate("", xy=((peak_travel + half) * MM, peak_force / 2 * KN),
                         xytext=(peak_travel * MM, peak_force / 2 * KN),
                         arrowprops=dict(arrowstyle="<->", color="tab:red", lw=1))
+    first_force = summary_number(summary, "first_peak_force_N")
+    first_travel = summary_number(summary, "travel_at_first_peak_m")
+    if first_force is not None and first_travel is not None:
+        ax.plot([first_travel * MM], [first_force * KN], "^", color="tab:green", markersize=9,
+                label="simulated first peak (centre crack) %.1f kN at %.1f mm"
+                % (first_force * KN, first_travel * MM))
     if slope is not None:
         # A legend entry only: the slope is a property of the curve drawn above.
         ax.plot([], [], " ", label="simulated elastic slope %.3g MN/m" % (slope * 1e-6))

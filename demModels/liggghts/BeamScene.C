@@ -516,7 +516,7 @@ void BeamScene::writeFrame(int frame)
 }
 
 
-void BeamScene::writeCheckpoint(const LoadingState& state)
+void BeamScene::writeCheckpoint()
 {
     // LIGGGHTS' restart first (particles, contacts, platen), then ours; a
     // checkpoint counts only when both are complete, and ours names the step.
@@ -540,7 +540,7 @@ void BeamScene::writeCheckpoint(const LoadingState& state)
     if (rank_ == 0)
     {
         Checkpoint c;
-        c.state = state;
+        c.state = loading_;
         c.curveColumns = curve_.columns();
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();
@@ -587,15 +587,13 @@ void BeamScene::run()
     MPI_Barrier(comm_);
     startLiggghts(resume.get());
 
-    LoadingState st;
+    LoadingState& st = loading_;
     st.dt = dt_;
     if (resume)
     {
         st = resume->state;
         for (const auto& row : resume->curveRows) curve_.addRow(row);
         for (const BreakEvent& e : resume->breaks) breakage_.append(e);
-        kineticToElasticAtPeak_ = st.kineticToElasticAtPeak;
-        frozenEjecta_ = st.frozenEjecta;
         particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/particles.pvd")));
         bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/bonds.pvd")));
         // Frames written after the checkpoint by the killed run are redone.
@@ -651,9 +649,9 @@ void BeamScene::run()
         const long frozen = freezeEjecta();
         if (frozen > 0)
         {
-            frozenEjecta_ += frozen;
+            st.frozenEjecta += frozen;
             log(std::to_string(frozen) + " particle(s) flew clear of the beam and were stopped "
-                "(absorbing far field; " + std::to_string(frozenEjecta_) + " in all)");
+                "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
         }
         checkHealth(kinetic, st.platenWork);
 
@@ -661,7 +659,7 @@ void BeamScene::run()
         {
             st.peak = force;
             st.travelAtPeak = travel;
-            kineticToElasticAtPeak_ = elastic > 0.0 ? kinetic / elastic : 0.0;
+            st.kineticToElasticAtPeak = elastic > 0.0 ? kinetic / elastic : 0.0;
         }
         // Half load counts once the force stays below it; a dip that recovers
         // (noise, a crack that arrests) does not.
@@ -682,9 +680,7 @@ void BeamScene::run()
         }
         if (st.sample % samplesPerCheckpoint == 0 && !done && st.steps < maxSteps)
         {
-            st.kineticToElasticAtPeak = kineticToElasticAtPeak_;
-            st.frozenEjecta = frozenEjecta_;
-            writeCheckpoint(st);
+            writeCheckpoint();
         }
 
         const auto now = std::chrono::steady_clock::now();
@@ -810,7 +806,7 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps,
       << "  \"slope_error\": " << jsonNumber(rise.elasticSlope / fieldSlope - 1.0) << ",\n"
       << "  \"first_peak_error\": " << jsonNumber(first.force / fieldPeak - 1.0) << ",\n"
       << "  \"peak_error\": " << jsonNumber(r.peakForce / fieldPeak - 1.0) << ",\n"
-      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(kineticToElasticAtPeak_) << ",\n"
+      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(loading_.kineticToElasticAtPeak) << ",\n"
       << "  \"crack_pattern\": {\n"
       << "    \"broken_bonds\": " << breakage_.size() << ",\n"
       << "    \"by_mode\": {\"tension\": " << breakage_.count(BreakMode::tension)
@@ -824,7 +820,7 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps,
     j << "]\n  },\n"
       << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
       << "  \"particles\": " << particles_.size() << ",\n"
-      << "  \"ejected_particles_stopped\": " << frozenEjecta_ << ",\n"
+      << "  \"ejected_particles_stopped\": " << loading_.frozenEjecta << ",\n"
       << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
       << "  \"bonds_per_particle\": " << bondStats_.meanBondsPerParticle << ",\n"
       << "  \"steps\": " << steps << ",\n"
