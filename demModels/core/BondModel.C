@@ -105,7 +105,7 @@ BreakMode BondModel::breakage
 
     const double sigmaT = state.tensileStrength;
     const double tau = state.shearStrength;
-    const double area15 = std::pow(k.area, 1.5);
+    const double area15 = k.area * std::sqrt(k.area);
 
     BreakMode mode = BreakMode::none;
     double worst = 1.0;

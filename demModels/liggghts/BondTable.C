@@ -31,7 +31,7 @@ BondTable::BondTable(LiggghtsInstance& lmp, int capacity, bool create)
         // property/atom: id group style name vector restart commGhost commReverse defaults...
         std::ostringstream cmd;
         cmd << "fix " << fixId << " all property/atom " << fixId << " vector yes no no";
-        for (int k = 0; k < capacity * slotSize; ++k)
+        for (int k = 0; k < 1 + capacity * slotSize; ++k)
         {
             cmd << " 0";
         }
@@ -56,19 +56,14 @@ BondTable BondTable::attach(LiggghtsInstance& lmp, int capacity)
 double* BondTable::slots(int i) const
 {
     // The array is reallocated as atoms arrive, so never keep the row pointer.
-    return fix_->array_atom[i];
+    // Its first value is the number of bonds; the slots follow.
+    return fix_->array_atom[i] + 1;
 }
 
 
 int BondTable::count(int i) const
 {
-    const double* s = slots(i);
-    int n = 0;
-    while (n < capacity_ && s[n * slotSize + partnerTag] > 0.0)
-    {
-        ++n;
-    }
-    return n;
+    return static_cast<int>(fix_->array_atom[i][0]);
 }
 
 
@@ -116,16 +111,13 @@ void BondTable::write(int i, int slot, const BondState& b, long ownTag)
 int BondTable::find(int i, long partnerTagValue) const
 {
     const double* s = slots(i);
-    for (int k = 0; k < capacity_; ++k)
+    const double wanted = static_cast<double>(partnerTagValue);
+    const int n = count(i);
+    for (int k = 0; k < n; ++k)
     {
-        const long p = static_cast<long>(s[k * slotSize + partnerTag]);
-        if (p == partnerTagValue)
+        if (s[k * slotSize + partnerTag] == wanted)
         {
             return k;
-        }
-        if (p == 0)
-        {
-            break;
         }
     }
     return -1;
@@ -140,14 +132,15 @@ bool BondTable::add(int i, const BondState& b, long ownTag)
         return false;
     }
     write(i, n, b, ownTag);
+    fix_->array_atom[i][0] = n + 1;
     return true;
 }
 
 
 void BondTable::clear(int i)
 {
-    double* s = slots(i);
-    std::fill(s, s + capacity_ * slotSize, 0.0);
+    double* row = fix_->array_atom[i];
+    std::fill(row, row + 1 + capacity_ * slotSize, 0.0);
 }
 
 
@@ -160,6 +153,7 @@ void BondTable::remove(int i, int slot)
         std::copy(s + last * slotSize, s + (last + 1) * slotSize, s + slot * slotSize);
     }
     std::fill(s + last * slotSize, s + (last + 1) * slotSize, 0.0);
+    fix_->array_atom[i][0] = last;
 }
 
 } // namespace iceDEM

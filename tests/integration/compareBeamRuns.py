@@ -33,17 +33,18 @@ def main(one, two):
     assert worst <= 1e-8, f"platen force differs by {worst:.3e} before any bond broke"
 
     peak_diff = abs(sa["peak_force_N"] - sb["peak_force_N"]) / sa["peak_force_N"]
-    # After fracture the runs drift apart (chaotic) and stop at different
-    # times: compare the broken bonds well after failure, at 1.5 times the
-    # time of the peak.
-    peak_time = max(a, key=lambda r: r["force"])["time"]
-    last = min(k for k, r in enumerate(a) if r["time"] >= 1.5 * peak_time)
-    assert last < len(b), "the 2-rank run stopped before 1.5 times the time of the peak"
+    # After fracture the runs drift apart (chaotic: LIGGGHTS sums the contact
+    # forces of broken bonds in a rank-dependent order and hysteretic damping
+    # amplifies the round-off): compare the broken bonds at failure, the time
+    # of the first peak (the first major crack).
+    first_travel = sa["contact_onset_travel_m"] + sa["travel_at_first_peak_m"]
+    last = min(k for k, r in enumerate(a) if r["travel"] >= first_travel - 1e-12)
+    assert last < len(b), "the 2-rank run stopped before the first peak"
     na, nb = a[last]["brokenBonds"], b[last]["brokenBonds"]
     count_diff = abs(na - nb) / max(na, 1)
     print(f"peak force {sa['peak_force_N']:.6g} vs {sb['peak_force_N']:.6g} N ({peak_diff:.2%}); "
           f"broken bonds at t = {a[last]['time']:.4g} s: {na:.0f} vs {nb:.0f} ({count_diff:.2%})")
-    assert na > 0, "no bond broke: the comparison after fracture means nothing"
+    assert na >= 5, "too few bonds broke by the first peak for the comparison to mean anything"
     assert peak_diff <= 0.02, "peak force differs by more than 2 %"
     assert count_diff <= 0.02, "broken-bond count differs by more than 2 %"
     print("1 passed, 0 failed")

@@ -53,7 +53,7 @@ def main():
     results = []
 
     # 1. bonded
-    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", a.particles, "-steps", a.steps],
+    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", str(a.particles), "-steps", str(a.steps)],
                    case, "log.bonded")
     s = iceCases.summary(case)
     results.append({"model": "iceBeamDEM bonded (this project)", "particles": s["particles"], "bonds": s["bonds"],
