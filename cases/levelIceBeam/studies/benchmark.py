@@ -10,6 +10,8 @@
 
     ./benchmark.py [-particles 13000] [-steps 2000]
 
+Needs Debian's Yade besides the project's own packages: apt-get install yade.
+
 Reports particle-steps per second of the stepping loop (set-up excluded), the
 ratios, and peak resident memory (/usr/bin/time -v). Writes
 benchmark/benchmark.json (for programs) and benchmark/benchmark.md (for the README)."""
@@ -17,6 +19,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -48,6 +51,8 @@ def main():
     p.add_argument("-steps", type=int, default=2000)
     p.add_argument("-out", default=os.path.join(here, "benchmark"))
     a = p.parse_args()
+    if shutil.which("yade") is None:
+        sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
     case = iceCases.copy_case(os.path.join(here, ".."), os.path.join(a.out, "case"))
     app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
     results = []

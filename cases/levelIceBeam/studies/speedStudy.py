@@ -34,7 +34,8 @@ def run_one(out, particles, speed, ranks):
 
 def load(case):
     s = iceCases.summary(case)
-    return dict(particles=int(particles), speed=float(speed), case=case, slope=s["elastic_slope_N_per_m"],
+    return dict(particles=int(s["particles"]), speed=float(s["platen_speed_m_per_s"]), case=case,
+                slope=s["elastic_slope_N_per_m"],
                 first=s["first_peak_force_N"], peak=s["peak_force_N"], wall=s["wall_s"],
                 ke=s["kinetic_to_elastic_energy_at_peak"], steps=s["steps"])
 
