@@ -21,35 +21,20 @@ enum Field
 } // namespace
 
 
-BondTable::BondTable(LiggghtsInstance& lmp, int capacity, bool create)
+BondTable::BondTable(LiggghtsInstance& lmp, int capacity)
 :
     lmp_(lmp),
     capacity_(capacity)
 {
-    if (create)
+    // property/atom: id group style name vector restart commGhost commReverse defaults...
+    std::ostringstream cmd;
+    cmd << "fix " << fixId << " all property/atom " << fixId << " vector yes no no";
+    for (int k = 0; k < 1 + capacity * slotSize; ++k)
     {
-        // property/atom: id group style name vector restart commGhost commReverse defaults...
-        std::ostringstream cmd;
-        cmd << "fix " << fixId << " all property/atom " << fixId << " vector yes no no";
-        for (int k = 0; k < 1 + capacity * slotSize; ++k)
-        {
-            cmd << " 0";
-        }
-        lmp_.command(cmd.str());
+        cmd << " 0";
     }
-    fix_ = &lmp_.fix(fixId);   // throws if missing
-}
-
-
-BondTable::BondTable(LiggghtsInstance& lmp, int capacity)
-:
-    BondTable(lmp, capacity, true)
-{}
-
-
-BondTable BondTable::attach(LiggghtsInstance& lmp, int capacity)
-{
-    return BondTable(lmp, capacity, false);
+    lmp_.command(cmd.str());
+    fix_ = &lmp_.fix(fixId);
 }
 
 
