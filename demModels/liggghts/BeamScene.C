@@ -321,40 +321,42 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
         gt = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * kt);
     }
 
+    auto exact = [](double v)
+    {
+        std::ostringstream out;
+        out << std::setprecision(17) << v;
+        return out.str();
+    };
     const std::string readParticles = resume
         ? "read_restart " + path("DEM/checkpoint/liggghts.restart")
         : "read_data " + path("DEM/packing.data");
-    lmp.setVariable("readParticles", "\"" + readParticles + "\"");
-    lmp.setVariable("platenStl", path("DEM/platen.stl"));
-    lmp.setVariable("ghostCutoff", ghostCutoff);
-    lmp.setVariable("neighbourSkin", skin);
-    lmp.setVariable("kn", contactStiffness_);
-    lmp.setVariable("kt", kt);
-    lmp.setVariable("gn", gn);
-    lmp.setVariable("gt", gt);
-    lmp.setVariable("mu", ice_.material.frictionCoefficient);
-    lmp.setVariable("muR", ice_.material.rollingFrictionCoefficient);
-    lmp.setVariable("dt", dt_);
-    lmp.setVariable("platenSpeed", settings_.platenSpeed);
-
+    const std::vector<std::pair<std::string, std::string>> variables
+    {
+        {"readParticles", "\"" + readParticles + "\""},
+        {"platenStl", path("DEM/platen.stl")},
+        {"ghostCutoff", exact(ghostCutoff)},
+        {"neighbourSkin", exact(skin)},
+        {"kn", exact(contactStiffness_)},
+        {"kt", exact(kt)},
+        {"gn", exact(gn)},
+        {"gt", exact(gt)},
+        {"mu", exact(ice_.material.frictionCoefficient)},
+        {"muR", exact(ice_.material.rollingFrictionCoefficient)},
+        {"dt", exact(dt_)},
+        {"platenSpeed", exact(settings_.platenSpeed)}
+    };
+    std::ostringstream variablesScript;
+    variablesScript << "# written by iceBeamDEM\n";
+    for (const auto& [name, value] : variables)
+    {
+        lmp.setVariable(name, value);
+        variablesScript << "variable " << name << " index " << value << "\n";
+    }
     // The same variables as a LIGGGHTS script, so that the scene can be rerun
     // by the plain `liggghts` binary (benchmarks, debugging).
     if (rank_ == 0)
     {
-        std::ostringstream vars;
-        vars << std::setprecision(17) << "# written by iceBeamDEM\n";
-        for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
-                 {"readParticles", "\"read_data " + path("DEM/packing.data") + "\""},
-                 {"platenStl", path("DEM/platen.stl")},
-                 {"ghostCutoff", number(ghostCutoff)}, {"neighbourSkin", number(skin)},
-                 {"kn", number(contactStiffness_)}, {"kt", number(kt)}, {"gn", number(gn)},
-                 {"gt", number(gt)}, {"mu", number(ice_.material.frictionCoefficient)},
-                 {"muR", number(ice_.material.rollingFrictionCoefficient)}, {"dt", number(dt_)},
-                 {"platenSpeed", number(settings_.platenSpeed)}})
-        {
-            vars << "variable " << name << " index " << value << "\n";
-        }
-        writeFileAtomically(path("DEM/variables.generated"), vars.str());
+        writeFileAtomically(path("DEM/variables.generated"), variablesScript.str());
     }
 
     const std::string script = path("DEM/in.levelIceBeam");

@@ -10,7 +10,6 @@
 #include <deque>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -101,15 +100,6 @@ void LiggghtsInstance::setVariable(const std::string& name, const std::string& v
 {
     command("variable " + name + " delete");
     command("variable " + name + " index " + value);
-}
-
-
-void LiggghtsInstance::setVariable(const std::string& name, double value)
-{
-    std::ostringstream s;
-    s.precision(17);
-    s << value;
-    setVariable(name, s.str());
 }
 
 
