@@ -529,14 +529,10 @@ void BeamScene::writeCheckpoint()
     }
     MPI_Barrier(comm_);
     lmp_->command("write_restart " + dir + "/liggghts.restart.tmp");
-    const std::vector<BondState> local = bonds_->localBondStates();
     std::vector<double> flat;
-    for (const BondState& b : local)
+    for (const BondState& b : bonds_->localBondStates())
     {
-        flat.insert(flat.end(), {double(b.tagA), double(b.tagB), double(static_cast<int>(b.family)),
-            b.restLength, b.shearDisplacement.x(), b.shearDisplacement.y(), b.shearDisplacement.z(),
-            b.twistAngle, b.bendingAngle.x(), b.bendingAngle.y(), b.bendingAngle.z(),
-            b.tensileStrength, b.shearStrength});
+        appendBondState(flat, b);
     }
     const std::vector<double> all = gatherDoubles(comm_, flat);
     if (rank_ == 0)
@@ -546,19 +542,9 @@ void BeamScene::writeCheckpoint()
         c.curveColumns = curve_.columns();
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();
-        for (std::size_t k = 0; k + 12 < all.size(); k += 13)
+        for (std::size_t k = 0; k + bondStateDoubles <= all.size(); k += bondStateDoubles)
         {
-            BondState b;
-            b.tagA = static_cast<long>(all[k]);
-            b.tagB = static_cast<long>(all[k + 1]);
-            b.family = static_cast<BondFamily>(static_cast<int>(all[k + 2]));
-            b.restLength = all[k + 3];
-            b.shearDisplacement = Vec3(all[k + 4], all[k + 5], all[k + 6]);
-            b.twistAngle = all[k + 7];
-            b.bendingAngle = Vec3(all[k + 8], all[k + 9], all[k + 10]);
-            b.tensileStrength = all[k + 11];
-            b.shearStrength = all[k + 12];
-            c.bonds.push_back(b);
+            c.bonds.push_back(bondStateFrom(&all[k]));
         }
         std::filesystem::rename(dir + "/liggghts.restart.tmp", dir + "/liggghts.restart");
         c.write(dir + "/iceBeamDEM.checkpoint");

@@ -90,6 +90,36 @@ private:
 } // namespace
 
 
+void appendBondState(std::vector<double>& out, const BondState& b)
+{
+    out.insert
+    (
+        out.end(),
+        {
+            double(b.tagA), double(b.tagB), double(static_cast<int>(b.family)), b.restLength,
+            b.shearDisplacement.x(), b.shearDisplacement.y(), b.shearDisplacement.z(), b.twistAngle,
+            b.bendingAngle.x(), b.bendingAngle.y(), b.bendingAngle.z(), b.tensileStrength, b.shearStrength
+        }
+    );
+}
+
+
+BondState bondStateFrom(const double* v)
+{
+    BondState b;
+    b.tagA = static_cast<long>(v[0]);
+    b.tagB = static_cast<long>(v[1]);
+    b.family = static_cast<BondFamily>(static_cast<int>(v[2]));
+    b.restLength = v[3];
+    b.shearDisplacement = Vec3(v[4], v[5], v[6]);
+    b.twistAngle = v[7];
+    b.bendingAngle = Vec3(v[8], v[9], v[10]);
+    b.tensileStrength = v[11];
+    b.shearStrength = v[12];
+    return b;
+}
+
+
 void Checkpoint::write(const std::string& path) const
 {
     writeStreamAtomically(path, [&](std::ostream& out)
@@ -116,17 +146,12 @@ void Checkpoint::write(const std::string& path) const
             w.put(static_cast<std::int32_t>(e.mode));
         }
         w.put(static_cast<std::uint64_t>(bonds.size()));
+        std::vector<double> flat;
         for (const BondState& b : bonds)
         {
-            w.put(static_cast<std::int64_t>(b.tagA));
-            w.put(static_cast<std::int64_t>(b.tagB));
-            w.put(static_cast<std::int32_t>(b.family));
-            w.put(b.restLength);
-            w.put(b.shearDisplacement);
-            w.put(b.twistAngle);
-            w.put(b.bendingAngle);
-            w.put(b.tensileStrength);
-            w.put(b.shearStrength);
+            flat.clear();
+            appendBondState(flat, b);
+            for (double v : flat) w.put(v);
         }
         w.put(magic);
     });
@@ -168,17 +193,9 @@ Checkpoint Checkpoint::read(const std::string& path)
     }
     for (auto n = r.getCount(limit); n > 0; --n)
     {
-        BondState b;
-        b.tagA = r.get<std::int64_t>();
-        b.tagB = r.get<std::int64_t>();
-        b.family = static_cast<BondFamily>(r.get<std::int32_t>());
-        b.restLength = r.get<double>();
-        b.shearDisplacement = r.getVec3();
-        b.twistAngle = r.get<double>();
-        b.bendingAngle = r.getVec3();
-        b.tensileStrength = r.get<double>();
-        b.shearStrength = r.get<double>();
-        c.bonds.push_back(b);
+        double values[bondStateDoubles];
+        for (double& v : values) v = r.get<double>();
+        c.bonds.push_back(bondStateFrom(values));
     }
     if (r.get<std::uint64_t>() != magic)
     {
