@@ -2,20 +2,22 @@
 """1 rank against 2 ranks on the same small beam: the platen force must agree to
 1e-8 (relative) while no bond has broken, and after fracture the peak force and
 the number of broken bonds within 2 %."""
-import csv
-import json
+import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
 
-def curve(case):
-    with open(f"{case}/postProcessing/platenForce.csv") as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+def samples(case):
+    """The platen curve as one dict per sample."""
+    columns = iceCases.curve(case)
+    return [dict(zip(columns, values)) for values in zip(*columns.values())]
 
 
 def main(one, two):
-    a, b = curve(one), curve(two)
-    sa = json.load(open(f"{one}/postProcessing/summary.json"))
-    sb = json.load(open(f"{two}/postProcessing/summary.json"))
+    a, b = samples(one), samples(two)
+    sa, sb = iceCases.summary(one), iceCases.summary(two)
     assert sa["ranks"] == 1 and sb["ranks"] == 2, (sa["ranks"], sb["ranks"])
     peak = max(r["force"] for r in a)
     compared, worst = 0, 0.0
