@@ -1,0 +1,112 @@
+#include "FreezeBonding.H"
+
+#include "CellGrid.H"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace iceDEM
+{
+
+double bondArea(const BondFamilyParameters& f, double ra, double rb)
+{
+    const double r = f.radiusMultiplier*std::min(ra, rb);
+    return M_PI*r*r;
+}
+
+
+std::vector<NewFreezeBond> freezeBondsAtContacts
+(
+    const std::vector<ParticleSpec>& particles,
+    const IceProperties& ice,
+    const FreezeBondStrengthModel& strengthModel,
+    double contactNormalStiffness
+)
+{
+    std::vector<NewFreezeBond> bonds;
+    if (particles.empty())
+    {
+        return bonds;
+    }
+    const BondFamilyParameters& family = ice.family(BondFamily::freeze);
+    Vec3 lo = particles.front().position, hi = lo;
+    double maxRadius = 0.0;
+    std::vector<Vec3> positions;
+    positions.reserve(particles.size());
+    for (const ParticleSpec& p : particles)
+    {
+        lo = lo.cwiseMin(p.position);
+        hi = hi.cwiseMax(p.position);
+        maxRadius = std::max(maxRadius, p.radius);
+        positions.push_back(p.position);
+    }
+    const double reach = 2.0*maxRadius*family.distFactor;
+    CellGrid grid(lo, hi, reach, 8.0*particles.size() + 64);
+    grid.build(positions);
+    grid.forEachPair([&](int a, int b)
+    {
+        const ParticleSpec& pa = particles[a];
+        const ParticleSpec& pb = particles[b];
+        if (pa.block == pb.block)
+        {
+            return;
+        }
+        const double distance = (pb.position - pa.position).norm();
+        const double touch = pa.radius + pb.radius;
+        if (distance > family.distFactor*touch)
+        {
+            return;
+        }
+        NewFreezeBond bond;
+        bond.pair = {std::min(a, b), std::max(a, b), BondFamily::freeze, distance};
+        bond.contactForce = contactNormalStiffness*std::max(0.0, touch - distance);
+        bond.strength = strengthModel.strength(bond.contactForce, bondArea(family, pa.radius, pb.radius));
+        bonds.push_back(bond);
+    });
+    std::sort(bonds.begin(), bonds.end(), [](const NewFreezeBond& x, const NewFreezeBond& y)
+    {
+        return std::make_pair(x.pair.i, x.pair.j) < std::make_pair(y.pair.i, y.pair.j);
+    });
+    return bonds;
+}
+
+
+FreezeBondingStatistics freezeBondingStatistics
+(
+    const std::vector<NewFreezeBond>& bonds,
+    const std::vector<ParticleSpec>& particles
+)
+{
+    FreezeBondingStatistics s;
+    s.bonds = static_cast<int>(bonds.size());
+    if (bonds.empty())
+    {
+        return s;
+    }
+    std::set<std::pair<int, int>> blockPairs;
+    double sumT = 0, sumT2 = 0, sumS = 0, sumS2 = 0, sumP = 0;
+    for (const NewFreezeBond& b : bonds)
+    {
+        const int ba = particles[b.pair.i].block, bb = particles[b.pair.j].block;
+        blockPairs.insert({std::min(ba, bb), std::max(ba, bb)});
+        sumT += b.strength.tensile;
+        sumT2 += b.strength.tensile*b.strength.tensile;
+        sumS += b.strength.shear;
+        sumS2 += b.strength.shear*b.strength.shear;
+        sumP += b.strength.confinement;
+        s.maxConfinement = std::max(s.maxConfinement, b.strength.confinement);
+    }
+    const double n = s.bonds;
+    s.blockContacts = static_cast<int>(blockPairs.size());
+    s.meanBondsPerBlockContact = n/s.blockContacts;
+    s.meanTensile = sumT/n;
+    s.sdTensile = std::sqrt(std::max(0.0, sumT2/n - s.meanTensile*s.meanTensile));
+    s.meanShear = sumS/n;
+    s.sdShear = std::sqrt(std::max(0.0, sumS2/n - s.meanShear*s.meanShear));
+    s.meanConfinement = sumP/n;
+    return s;
+}
+
+} // namespace iceDEM
