@@ -11,52 +11,14 @@
 // Writes postProcessing/{platenForce.csv, breakage.h5, summary.json},
 //        VTK/{particles,bonds}.pvd, log lines on stdout.
 
+#include "AppMain.H"
 #include "BeamScene.H"
-
-#include "InputError.H"
-
-#include <mpi.h>
-
-#include <iostream>
-#include <string>
 
 int main(int argc, char** argv)
 {
-    MPI_Init(&argc, &argv);
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    int status = 0;
-    try
+    return iceDEM::runApplication(argc, argv, "iceBeamDEM", [&](MPI_Comm comm)
     {
-        iceDEM::BeamSceneOptions options = iceDEM::BeamSceneOptions::fromArguments(argc, argv);
-        iceDEM::BeamScene scene(MPI_COMM_WORLD, options);
+        iceDEM::BeamScene scene(comm, iceDEM::BeamSceneOptions::fromArguments(argc, argv));
         scene.run();
-    }
-    catch (const iceDEM::InputError& e)
-    {
-        if (rank == 0)
-        {
-            std::cerr << "\n--> iceBeamDEM FATAL INPUT ERROR\n    " << e.what() << "\n" << std::endl;
-        }
-        status = 1;   // every rank reads the same input and stops here alike
-    }
-    catch (const iceDEM::RunError& e)
-    {
-        if (rank == 0)
-        {
-            std::cerr << "\n--> iceBeamDEM FATAL ERROR\n    " << e.what() << "\n" << std::endl;
-        }
-        status = 3;   // found by every rank together (health checks are collective)
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "\n--> iceBeamDEM FATAL ERROR (rank " << rank << ")\n    " << e.what() << "\n" << std::endl;
-        status = 2;
-    }
-    if (status == 2)
-    {
-        MPI_Abort(MPI_COMM_WORLD, status);
-    }
-    MPI_Finalize();
-    return status;
+    });
 }

@@ -79,11 +79,12 @@ BondState BondModel::create
         state.tensileStrength = family_.breakN * k.youngsModulus;
         state.shearStrength = family_.beta * state.tensileStrength;
     }
-    else
+    else if (family_.strengthModel == StrengthModel::stress)
     {
         state.tensileStrength = family_.tensileStrength;
         state.shearStrength = family_.shearStrength;
     }
+    // perBond: the creator sets the strengths; until then the bond has none.
     return state;
 }
 

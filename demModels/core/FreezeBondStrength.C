@@ -71,11 +71,8 @@ FreezeBondStrengthModel FreezeBondStrengthModel::fromDictionary(const Dictionary
 {
     d.checkKeys({"submersionTime", "strengthModel", "confinementLineCoeffs", "fixedSetCoeffs", "areaCorrection"});
     FreezeBondStrengthModel m;
-    m.submersionTime_ = d.getScalar("submersionTime");
-    if (!(m.submersionTime_ > 0.0))
-    {
-        d.fail("submersionTime", "must be positive (minutes)");
-    }
+    m.fileName_ = d.fileName();
+    const double submersionTime = d.getScalar("submersionTime");
     const std::string kind = d.getChoice("strengthModel", {"confinementLine", "fixedSet"});
     if (kind == "confinementLine")
     {
@@ -113,16 +110,10 @@ FreezeBondStrengthModel FreezeBondStrengthModel::fromDictionary(const Dictionary
         const std::vector<double> slopes = column("slopes", true);
         const std::vector<double> intercepts = column("intercepts", false);
         const std::vector<double> ratios = column("shearToTensileRatios", true);
-        if (m.submersionTime_ < times.front()*(1 - 1e-12) || m.submersionTime_ > times.back()*(1 + 1e-12))
-        {
-            std::ostringstream msg;
-            msg << "submersion time " << m.submersionTime_ << " min lies outside the table ("
-                << times.front() << " to " << times.back() << " min of confinementLineCoeffs.submersionTimes)";
-            d.fail("submersionTime", msg.str());
-        }
-        m.slope_ = interpolateInLogTime(times, slopes, m.submersionTime_);
-        m.intercept_ = interpolateInLogTime(times, intercepts, m.submersionTime_);
-        m.shearRatio_ = interpolateInLogTime(times, ratios, m.submersionTime_);
+        m.times_ = times;
+        m.slopes_ = slopes;
+        m.intercepts_ = intercepts;
+        m.ratios_ = ratios;
     }
     else
     {
@@ -145,6 +136,8 @@ FreezeBondStrengthModel FreezeBondStrengthModel::fromDictionary(const Dictionary
         if (!(m.setShear_ > 0.0)) s.fail("shear", "must be positive (Pa)");
         m.shearRatio_ = m.setShear_/m.setTensile_;
     }
+
+    m.setSubmersionTime(submersionTime);
 
     const Dictionary& a = d.subDict("areaCorrection");
     const std::string areaModel = a.getChoice("model", {"given", "heatBalance", "interface"});
@@ -183,6 +176,30 @@ FreezeBondStrengthModel FreezeBondStrengthModel::fromDictionary(const Dictionary
         m.areaKind_ = AreaCorrectionKind::interface;
     }
     return m;
+}
+
+
+void FreezeBondStrengthModel::setSubmersionTime(double t)
+{
+    if (!(t > 0.0))
+    {
+        throw InputError(fileName_, "submersionTime", "must be positive (minutes)");
+    }
+    submersionTime_ = t;
+    if (kind_ == Kind::fixedSet)
+    {
+        return;
+    }
+    if (t < times_.front()*(1 - 1e-12) || t > times_.back()*(1 + 1e-12))
+    {
+        std::ostringstream msg;
+        msg << "submersion time " << t << " min lies outside the table ("
+            << times_.front() << " to " << times_.back() << " min of confinementLineCoeffs.submersionTimes)";
+        throw InputError(fileName_, "submersionTime", msg.str());
+    }
+    slope_ = interpolateInLogTime(times_, slopes_, t);
+    intercept_ = interpolateInLogTime(times_, intercepts_, t);
+    shearRatio_ = interpolateInLogTime(times_, ratios_, t);
 }
 
 

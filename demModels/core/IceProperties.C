@@ -96,10 +96,12 @@ BondFamilyParameters readFamily(const Dictionary& d)
     f.poissonsRatio = readScalar(d, "poissonsRatio", halfOpen(0, 0.5));
     f.radiusMultiplier = readScalar(d, "radiusMultiplier", positive());
 
+    const std::string strengthModel =
+        d.getChoice("strengthModel", {"strain", "stress", "freezeBondProperties"});
     f.strengthModel =
-        d.getChoice("strengthModel", {"strain", "stress"}) == "stress"
-      ? StrengthModel::stress
-      : StrengthModel::strain;
+        strengthModel == "stress" ? StrengthModel::stress
+      : strengthModel == "strain" ? StrengthModel::strain
+      : StrengthModel::perBond;
 
     // Only the chosen model's entries are required; the other model's are
     // checked when given, so that switching models is a one-word edit.
@@ -110,8 +112,9 @@ BondFamilyParameters readFamily(const Dictionary& d)
     };
     f.breakN = strength("breakN", positive(), strain, f.breakN);
     f.beta = strength("beta", positive(), strain, f.beta);
-    f.tensileStrength = strength("tensileStrength", positive("Pa"), !strain, f.tensileStrength);
-    f.shearStrength = strength("shearStrength", positive("Pa"), !strain, f.shearStrength);
+    const bool stress = f.strengthModel == StrengthModel::stress;
+    f.tensileStrength = strength("tensileStrength", positive("Pa"), stress, f.tensileStrength);
+    f.shearStrength = strength("shearStrength", positive("Pa"), stress, f.shearStrength);
 
     f.twistStrengthFactor = readScalarOrDefault(d, "twistStrengthFactor", positive(), 1.0);
     f.bendingStrengthFactor = readScalarOrDefault(d, "bendingStrengthFactor", positive(), 1.0);

@@ -34,6 +34,7 @@ std::string toString(StrengthModel m)
     {
         case StrengthModel::stress: return "stress";
         case StrengthModel::strain: return "strain";
+        case StrengthModel::perBond: return "freezeBondProperties";
     }
     return "unknown";
 }

@@ -7,9 +7,11 @@
 #include "ForceCurveAnalysis.H"
 #include "IceBondForces.H"
 #include "InputError.H"
+#include "JsonObject.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "RandomPacking.H"
+#include "SceneSetup.H"
 #include "StlWriter.H"
 #include "TimeStep.H"
 
@@ -43,20 +45,6 @@ std::string number(double v)
     return s.str();
 }
 
-std::string jsonNumber(double v)
-{
-    return std::isfinite(v) ? number(v) : "null";
-}
-
-std::string formatDuration(double seconds)
-{
-    std::ostringstream s;
-    const long total = static_cast<long>(std::max(0.0, seconds));
-    if (total >= 3600) s << total / 3600 << " h ";
-    if (total >= 60) s << (total % 3600) / 60 << " min ";
-    s << total % 60 << " s";
-    return s.str();
-}
 
 } // namespace
 
@@ -241,8 +229,12 @@ void BeamScene::buildParticles()
     bondStats_ = builder.statistics();
     log("Bonds: " + bondStats_.summary());
 
-    const double meanDiameter = 2.0 * stats.meanRadius;
-    contactStiffness_ = M_PI * ice_.material.youngsModulus * meanDiameter / 4.0;
+    double minMass = HUGE_VAL;
+    for (const ParticleSpec& p : particles_)
+    {
+        minMass = std::min(minMass, ice_.material.density * 4.0 / 3.0 * M_PI * std::pow(p.radius, 3));
+    }
+    contact_ = ContactParameters::of(ice_, 2.0 * stats.meanRadius, minMass);
 
     const TimeStepLimits limits = timeStepLimits(ice_, stats.minRadius, bondStats_.maxBondsPerParticle);
     dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
@@ -262,23 +254,17 @@ void BeamScene::writeLiggghtsInputs() const
     // Room for broken pieces: a particle that leaves the box is lost, which
     // the run reports as an error.
     const double margin = 0.5 * settings_.length;
-    writeStreamAtomically(path("DEM/packing.data"), [&](std::ostream& out)
-    {
-        out << "LIGGGHTS data file: level-ice beam packing written by iceBeamDEM\n\n"
-            << particles_.size() << " atoms\n2 atom types\n\n"
-            << std::setprecision(17)
-            << -margin << " " << settings_.length + margin << " xlo xhi\n"
-            << -settings_.initialGap - settings_.platenDiameter - margin << " "
-            << settings_.width + settings_.maxTravel + margin << " ylo yhi\n"
-            << -margin << " " << settings_.thickness + margin << " zlo zhi\n\nAtoms\n\n";
-        for (std::size_t k = 0; k < particles_.size(); ++k)
-        {
-            const ParticleSpec& p = particles_[k];
-            out << k + 1 << " " << (p.fixed ? fixedType : mobileType) << " " << 2.0 * p.radius << " "
-                << ice_.material.density << " " << p.position.x() << " " << p.position.y() << " "
-                << p.position.z() << "\n";
-        }
-    });
+    writeLiggghtsData
+    (
+        path("DEM/packing.data"),
+        "level-ice beam packing written by iceBeamDEM",
+        particles_,
+        ice_.material.density,
+        Vec3(-margin, -settings_.initialGap - settings_.platenDiameter - margin, -margin),
+        Vec3(settings_.length + margin, settings_.width + settings_.maxTravel + margin, settings_.thickness + margin),
+        2,
+        [](const ParticleSpec& p) { return p.fixed ? fixedType : mobileType; }
+    );
     const double radius = 0.5 * settings_.platenDiameter;
     writeCylinderStl
     (
@@ -300,64 +286,27 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     LiggghtsInstance& lmp = *lmp_;
 
     double maxRadius = 0.0;
-    double minMass = HUGE_VAL;
     for (const ParticleSpec& p : particles_)
     {
         maxRadius = std::max(maxRadius, p.radius);
-        minMass = std::min(minMass, ice_.material.density * 4.0 / 3.0 * M_PI * std::pow(p.radius, 3));
     }
-    const double maxDistFactor =
-        std::max(ice_.family(BondFamily::ice).distFactor, ice_.family(BondFamily::freeze).distFactor);
     const double skin = 0.2 * maxRadius;
-    // Ghosts must hold every bonded partner, with room for the bond to stretch.
-    const double ghostCutoff = 1.1 * maxDistFactor * 2.0 * maxRadius + skin;
 
-    const double kt = contactStiffness_ / (2.0 * (1.0 + ice_.material.poissonsRatio));
-    double gn = 0.0, gt = 0.0;
-    if (ice_.damping.model == DampingModel::viscous)
-    {
-        const double reducedMass = 0.5 * minMass;
-        gn = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * contactStiffness_);
-        gt = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * kt);
-    }
-
-    auto exact = [](double v)
-    {
-        std::ostringstream out;
-        out << std::setprecision(17) << v;
-        return out.str();
-    };
     const std::string readParticles = resume
         ? "read_restart " + path("DEM/checkpoint/liggghts.restart")
         : "read_data " + path("DEM/packing.data");
-    const std::vector<std::pair<std::string, std::string>> variables
+    ScriptVariables variables
     {
         {"readParticles", "\"" + readParticles + "\""},
         {"platenStl", path("DEM/platen.stl")},
-        {"ghostCutoff", exact(ghostCutoff)},
-        {"neighbourSkin", exact(skin)},
-        {"kn", exact(contactStiffness_)},
-        {"kt", exact(kt)},
-        {"gn", exact(gn)},
-        {"gt", exact(gt)},
-        {"mu", exact(ice_.material.frictionCoefficient)},
-        {"muR", exact(ice_.material.rollingFrictionCoefficient)},
-        {"dt", exact(dt_)},
-        {"platenSpeed", exact(settings_.platenSpeed)}
+        {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, maxRadius, skin))},
+        {"neighbourSkin", exactNumber(skin)},
+        {"dt", exactNumber(dt_)},
+        {"platenSpeed", exactNumber(settings_.platenSpeed)}
     };
-    std::ostringstream variablesScript;
-    variablesScript << "# written by iceBeamDEM\n";
-    for (const auto& [name, value] : variables)
-    {
-        lmp.setVariable(name, value);
-        variablesScript << "variable " << name << " index " << value << "\n";
-    }
-    // The same variables as a LIGGGHTS script, so that the scene can be rerun
-    // by the plain `liggghts` binary (benchmarks, debugging).
-    if (rank_ == 0)
-    {
-        writeFileAtomically(path("DEM/variables.generated"), variablesScript.str());
-    }
+    const ScriptVariables contactVars = contactVariables(contact_);
+    variables.insert(variables.end(), contactVars.begin(), contactVars.end());
+    defineScriptVariables(lmp, variables, path("DEM/variables.generated"), "iceBeamDEM");
 
     const std::string script = path("DEM/in.levelIceBeam");
     if (!std::filesystem::exists(script))
@@ -366,7 +315,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     }
     lmp.runScript(script);
 
-    bonds_ = std::make_unique<IceBondForces>(lmp, ice_, contactStiffness_);
+    bonds_ = std::make_unique<IceBondForces>(lmp, ice_, contact_.normalStiffness);
     lmp.command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     // LIGGGHTS' set-up of the first run resets property/atom values to their

@@ -133,6 +133,15 @@ void IceBondForces::restoreBonds(const std::vector<BondState>& states)
 }
 
 
+void IceBondForces::addBonds(const std::vector<BondState>& states)
+{
+    for (const BondState& state : states)
+    {
+        store(state);
+    }
+}
+
+
 void IceBondForces::store(const BondState& state)
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;

@@ -7,6 +7,7 @@
 
 #include <mpi.h>
 
+#include <cmath>
 #include <numeric>
 
 namespace iceDEM
@@ -32,6 +33,39 @@ std::vector<double> gatherDoubles(MPI_Comm comm, const std::vector<double>& loca
         all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, comm
     );
     return all;
+}
+
+
+std::vector<Vec3> allPositionsByTag(const LiggghtsInstance& lmp)
+{
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    MPI_Comm comm = lmp.communicator();
+    int size = 1;
+    MPI_Comm_size(comm, &size);
+    std::vector<double> local;
+    local.reserve(4*atom.nlocal);
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        local.push_back(atom.tag[i]);
+        local.insert(local.end(), atom.x[i], atom.x[i] + 3);
+    }
+    int count = static_cast<int>(local.size());
+    std::vector<int> counts(size), offsets(size, 0);
+    MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+    std::partial_sum(counts.begin(), counts.end() - 1, offsets.begin() + 1);
+    std::vector<double> all(std::accumulate(counts.begin(), counts.end(), std::size_t(0)));
+    MPI_Allgatherv
+    (
+        local.data(), count, MPI_DOUBLE,
+        all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm
+    );
+    std::vector<Vec3> positions(all.size()/4, Vec3::Constant(std::nan("")));
+    for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    {
+        const long tag = static_cast<long>(all[k]);
+        positions.at(tag - 1) = Vec3(all[k + 1], all[k + 2], all[k + 3]);
+    }
+    return positions;
 }
 
 
