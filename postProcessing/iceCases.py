@@ -73,7 +73,8 @@ def copy_case(source, target):
     shutil.rmtree(target, ignore_errors=True)
     os.makedirs(target)
     for sub in ("constant", "system", "DEM"):
-        shutil.copytree(os.path.join(source, sub), os.path.join(target, sub))
+        if os.path.isdir(os.path.join(source, sub)):
+            shutil.copytree(os.path.join(source, sub), os.path.join(target, sub))
     for generated in ("DEM/packing.data", "DEM/platen.stl"):
         p = os.path.join(target, generated)
         if os.path.exists(p):

@@ -288,7 +288,8 @@ void FreezeBondTensionScene::confine()
     const long chunk = std::max(1L, steps/10);
     for (long done = 0; done < steps; done += chunk)
     {
-        lmp_->command("run " + std::to_string(chunk) + " pre no post no");
+        // The first run after a fix is added must set it up (pre yes).
+        lmp_->command("run " + std::to_string(chunk) + (done ? " pre no post no" : " post no"));
         steps_ += chunk;
     }
     confinementReaction_ = -lowerGripForce();
@@ -341,6 +342,7 @@ void FreezeBondTensionScene::freezeBond()
         pb.position = now[b.pair.j].position;
         pb.radius = now[b.pair.j].radius;
         BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
+        s.family = BondFamily::freeze;
         s.tensileStrength = b.strength.tensile;
         s.shearStrength = b.strength.shear;
         states.push_back(s);
@@ -360,7 +362,7 @@ void FreezeBondTensionScene::pull()
     lmp_->command("unfix confine");
     // Let the unloaded specimen relax before pulling.
     const long relax = static_cast<long>(std::ceil(0.2*settings_.confinementTime/dt_));
-    lmp_->command("run " + std::to_string(relax) + " pre no post no");
+    lmp_->command("run " + std::to_string(relax) + " post no");
     steps_ += relax;
     lmp_->command("unfix integrateUpperGrip");
     lmp_->command("velocity upperGrip set 0 0 0");
@@ -372,7 +374,7 @@ void FreezeBondTensionScene::pull()
     bool failed = false;
     for (int s = 0; s <= settings_.samples && !failed; ++s)
     {
-        lmp_->command("run " + std::to_string(stepsPerSample) + " pre no post no");
+        lmp_->command("run " + std::to_string(stepsPerSample) + (s ? " pre no post no" : " post no"));
         steps_ += stepsPerSample;
         const double force = lowerGripForce();
         long intact = 0;

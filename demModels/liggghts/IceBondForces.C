@@ -108,10 +108,10 @@ void IceBondForces::createBonds
     states.reserve(pairs.size());
     for (const BondPair& pair : pairs)
     {
-        states.push_back
-        (
-            models_[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, spec(pair.i), spec(pair.j))
-        );
+        BondState state =
+            models_[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, spec(pair.i), spec(pair.j));
+        state.family = pair.family;
+        states.push_back(state);
     }
     for (const BondState& state : states)
     {
