@@ -1,6 +1,7 @@
 #include "BreakageRecord.H"
 
 #include "AtomicFile.H"
+#include "Hdf5Io.H"
 
 #include <hdf5.h>
 
@@ -32,119 +33,9 @@ bool validBreakMode(int code)
 }
 
 
-//- Owns one HDF5 identifier and closes it with the matching H5?close.
-class H5Id
-{
-public:
-    using Closer = herr_t (*)(hid_t);
-
-    H5Id(hid_t id, Closer closer, const std::string& context)
-    :
-        id_(id),
-        closer_(closer)
-    {
-        if (id_ < 0)
-        {
-            throw std::runtime_error(context);
-        }
-    }
-
-    H5Id(const H5Id&) = delete;
-    H5Id& operator=(const H5Id&) = delete;
-
-    ~H5Id()
-    {
-        closer_(id_);
-    }
-
-    hid_t get() const { return id_; }
-
-private:
-    hid_t id_;
-    Closer closer_;
-};
-
-
-//- Silences HDF5's own error printing; failures are reported by our exceptions.
-class QuietHdf5Errors
-{
-public:
-    QuietHdf5Errors()
-    {
-        H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    }
-
-    ~QuietHdf5Errors()
-    {
-        H5Eset_auto2(H5E_DEFAULT, function_, data_);
-    }
-
-private:
-    H5E_auto2_t function_ = nullptr;
-    void* data_ = nullptr;
-};
-
-
 std::string failure(const std::string& path, const std::string& what)
 {
     return "HDF5 breakage file '" + path + "': " + what;
-}
-
-
-void writeDataset
-(
-    hid_t group,
-    const char* name,
-    hid_t fileType,
-    hid_t memoryType,
-    const void* data,
-    hsize_t n,
-    const std::string& path
-)
-{
-    H5Id space(H5Screate_simple(1, &n, nullptr), H5Sclose,
-               failure(path, std::string("cannot create dataspace for ") + name));
-    H5Id dataset
-    (
-        H5Dcreate2(group, name, fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        H5Dclose,
-        failure(path, std::string("cannot create dataset ") + name)
-    );
-    if (n > 0
-     && H5Dwrite(dataset.get(), memoryType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    {
-        throw std::runtime_error(failure(path, std::string("cannot write dataset ") + name));
-    }
-}
-
-
-void writeStringAttribute
-(
-    hid_t object,
-    const char* name,
-    const std::string& value,
-    const std::string& path
-)
-{
-    const std::string context = failure(path, std::string("cannot write attribute ") + name);
-    H5Id type(H5Tcopy(H5T_C_S1), H5Tclose, context);
-    if (H5Tset_size(type.get(), value.size()) < 0
-     || H5Tset_strpad(type.get(), H5T_STR_NULLPAD) < 0)
-    {
-        throw std::runtime_error(context);
-    }
-    H5Id space(H5Screate(H5S_SCALAR), H5Sclose, context);
-    H5Id attribute
-    (
-        H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-        H5Aclose,
-        context
-    );
-    if (H5Awrite(attribute.get(), type.get(), value.data()) < 0)
-    {
-        throw std::runtime_error(context);
-    }
 }
 
 
@@ -162,34 +53,6 @@ void writeCountAttribute(hid_t object, std::int64_t count, const std::string& pa
     {
         throw std::runtime_error(context);
     }
-}
-
-
-template<class T>
-std::vector<T> readDataset
-(
-    hid_t group,
-    const char* name,
-    hid_t memoryType,
-    const std::string& path
-)
-{
-    const std::string context = failure(path, std::string("cannot read dataset ") + name);
-    H5Id dataset(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, context);
-    H5Id space(H5Dget_space(dataset.get()), H5Sclose, context);
-    if (H5Sget_simple_extent_ndims(space.get()) != 1)
-    {
-        throw std::runtime_error(context + " (not one-dimensional)");
-    }
-    hsize_t n = 0;
-    H5Sget_simple_extent_dims(space.get(), &n, nullptr);
-    std::vector<T> values(n);
-    if (n > 0
-     && H5Dread(dataset.get(), memoryType, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-    {
-        throw std::runtime_error(context);
-    }
-    return values;
 }
 
 

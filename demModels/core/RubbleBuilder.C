@@ -1,0 +1,111 @@
+#include "RubbleBuilder.H"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+//- Axis-aligned plan extent of a set of sphere centres grown by a radius.
+struct PlanBox
+{
+    Vec2 lo, hi;
+};
+
+PlanBox envelope(const std::vector<Vec3>& centres, double radius)
+{
+    PlanBox b{Vec2::Constant(HUGE_VAL), Vec2::Constant(-HUGE_VAL)};
+    for (const Vec3& c : centres)
+    {
+        b.lo = b.lo.cwiseMin(c.head<2>() - Vec2::Constant(radius));
+        b.hi = b.hi.cwiseMax(c.head<2>() + Vec2::Constant(radius));
+    }
+    return b;
+}
+
+double perimeter(const PlanPolygon& p)
+{
+    double sum = 0.0;
+    const auto& v = p.vertices();
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+        sum += (v[(k + 1) % v.size()] - v[k]).norm();
+    }
+    return sum;
+}
+
+} // namespace
+
+
+Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
+{
+    if (!(spec.iceVolume > 0.0 && spec.boxLength > 0.0 && spec.boxWidth > 0.0 && spec.particleDiameter > 0.0))
+    {
+        throw std::invalid_argument("buildRubble: need positive ice volume, box and particle diameter");
+    }
+    std::mt19937_64 rng(spec.seed);
+    std::uniform_real_distribution<double> turn(0.0, 2.0*M_PI);
+    const double r = 0.5*spec.particleDiameter;
+    const double gap = 0.1*r;   // between neighbouring envelopes in a row
+
+    Rubble rubble;
+    rubble.blockThickness = hcpThickness(spec.particleDiameter, spec.layers);
+    double x = 0.0, y = 0.0, rowDepth = 0.0;
+    double base = spec.firstSheetBase;
+    while (rubble.iceVolume < spec.iceVolume)
+    {
+        const BlockSize size = sizes.draw(rng);
+        const PlanPolygon local = blockOutline(size, spec.shape, rng);
+        const PlanPolygon turned = local.rotated(turn(rng));
+        const std::vector<Vec3> centres = hcpBlockCentres(turned, spec.particleDiameter, spec.layers);
+        if (centres.empty())
+        {
+            continue;
+        }
+        const PlanBox box = envelope(centres, r);
+        const Vec2 extent = box.hi - box.lo;
+        if (extent.x() > spec.boxLength || extent.y() > spec.boxWidth)
+        {
+            throw std::invalid_argument("buildRubble: a block does not fit in the box");
+        }
+        if (x + extent.x() > spec.boxLength)
+        {
+            x = 0.0;
+            y += rowDepth + gap;
+            rowDepth = 0.0;
+        }
+        if (y + extent.y() > spec.boxWidth)
+        {
+            x = y = rowDepth = 0.0;
+            base += rubble.blockThickness + spec.sheetGap;
+        }
+        const Vec2 shift = Vec2(x, y) - box.lo;
+        BuiltBlock block;
+        block.outline = turned.translated(shift);
+        block.planArea = turned.area();
+        block.volume = block.planArea*rubble.blockThickness;
+        block.surface = 2.0*block.planArea + perimeter(turned)*rubble.blockThickness;
+        block.firstParticle = static_cast<int>(rubble.particles.size());
+        block.particleCount = static_cast<int>(centres.size());
+        const int id = static_cast<int>(rubble.blocks.size());
+        for (const Vec3& c : centres)
+        {
+            ParticleSpec p;
+            p.position = Vec3(c.x() + shift.x(), c.y() + shift.y(), c.z() + base);
+            p.radius = r;
+            p.block = id;
+            rubble.particles.push_back(p);
+            rubble.sphereVolume += 4.0/3.0*M_PI*r*r*r;
+        }
+        rubble.blocks.push_back(block);
+        rubble.iceVolume += block.volume;
+        x += extent.x() + gap;
+        rowDepth = std::max(rowDepth, extent.y());
+    }
+    return rubble;
+}
+
+} // namespace iceDEM
