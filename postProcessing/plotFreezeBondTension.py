@@ -116,7 +116,7 @@ def main():
                          f"{f['measured']['intercept_kPa']:.1f} kPa; model line {f['model_slope']:.2f} p_c + {f['model_intercept_kPa']:.1f} kPa")
     open(a.table, "w").write("\n".join(lines) + "\n")
 
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(10, 5))
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(times)))
     for t, c in zip(times, colours):
         rs = [r for r in results if r["minutes"] == t]
@@ -135,7 +135,7 @@ def main():
     ax.set_xlim(0, 110)
     ax.set_ylim(0, None)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     fig.savefig(a.out + ".tmp.png", dpi=130)
     os.replace(a.out + ".tmp.png", a.out)
