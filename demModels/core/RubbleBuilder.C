@@ -1,5 +1,7 @@
 #include "RubbleBuilder.H"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -9,21 +11,35 @@ namespace iceDEM
 namespace
 {
 
-//- Axis-aligned plan extent of a set of sphere centres grown by a radius.
-struct PlanBox
+//- Axis-aligned extent of a set of sphere centres grown by a radius.
+struct Envelope
 {
-    Vec2 lo, hi;
+    Vec3 lo, hi;
 };
 
-PlanBox envelope(const std::vector<Vec3>& centres, double radius)
+Envelope envelope(const std::vector<Vec3>& centres, double radius)
 {
-    PlanBox b{Vec2::Constant(HUGE_VAL), Vec2::Constant(-HUGE_VAL)};
+    Envelope b{Vec3::Constant(HUGE_VAL), Vec3::Constant(-HUGE_VAL)};
     for (const Vec3& c : centres)
     {
-        b.lo = b.lo.cwiseMin(c.head<2>() - Vec2::Constant(radius));
-        b.hi = b.hi.cwiseMax(c.head<2>() + Vec2::Constant(radius));
+        b.lo = b.lo.cwiseMin(c - Vec3::Constant(radius));
+        b.hi = b.hi.cwiseMax(c + Vec3::Constant(radius));
     }
     return b;
+}
+
+//- Tilts the block by `angle` about the horizontal axis at `direction` through its centroid.
+std::vector<Vec3> tilted(std::vector<Vec3> centres, double direction, double angle)
+{
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& c : centres) centroid += c;
+    centroid /= static_cast<double>(centres.size());
+    const Eigen::AngleAxisd rotation(angle, Vec3(std::cos(direction), std::sin(direction), 0.0));
+    for (Vec3& c : centres)
+    {
+        c = centroid + rotation*(c - centroid);
+    }
+    return centres;
 }
 
 double perimeter(const PlanPolygon& p)
@@ -48,25 +64,28 @@ Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
     }
     std::mt19937_64 rng(spec.seed);
     std::uniform_real_distribution<double> turn(0.0, 2.0*M_PI);
+    std::uniform_real_distribution<double> tilt(-spec.maxTilt, spec.maxTilt);
     const double r = 0.5*spec.particleDiameter;
     const double gap = 0.1*r;   // between neighbouring envelopes in a row
 
     Rubble rubble;
     rubble.blockThickness = hcpThickness(spec.particleDiameter, spec.layers);
-    double x = 0.0, y = 0.0, rowDepth = 0.0;
+    double x = 0.0, y = 0.0, rowDepth = 0.0, sheetHeight = 0.0;
     double base = spec.firstSheetBase;
     while (rubble.iceVolume < spec.iceVolume)
     {
         const BlockSize size = sizes.draw(rng);
         const PlanPolygon local = blockOutline(size, spec.shape, rng);
         const PlanPolygon turned = local.rotated(turn(rng));
-        const std::vector<Vec3> centres = hcpBlockCentres(turned, spec.particleDiameter, spec.layers);
-        if (centres.empty())
+        const std::vector<Vec3> flat = hcpBlockCentres(turned, spec.particleDiameter, spec.layers);
+        if (flat.empty())
         {
             continue;
         }
-        const PlanBox box = envelope(centres, r);
-        const Vec2 extent = box.hi - box.lo;
+        const double tiltDirection = turn(rng);
+        const std::vector<Vec3> centres = tilted(flat, tiltDirection, tilt(rng));
+        const Envelope box = envelope(centres, r);
+        const Vec3 extent = box.hi - box.lo;
         if (extent.x() > spec.boxLength || extent.y() > spec.boxWidth)
         {
             throw std::invalid_argument("buildRubble: a block does not fit in the box");
@@ -80,11 +99,12 @@ Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
         if (y + extent.y() > spec.boxWidth)
         {
             x = y = rowDepth = 0.0;
-            base += rubble.blockThickness + spec.sheetGap;
+            base += sheetHeight + spec.sheetGap;
+            sheetHeight = 0.0;
         }
-        const Vec2 shift = Vec2(x, y) - box.lo;
+        const Vec3 shift = Vec3(x, y, base) - box.lo;
         BuiltBlock block;
-        block.outline = turned.translated(shift);
+        block.outline = turned.translated(shift.head<2>());
         block.planArea = turned.area();
         block.volume = block.planArea*rubble.blockThickness;
         block.surface = 2.0*block.planArea + perimeter(turned)*rubble.blockThickness;
@@ -94,7 +114,7 @@ Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
         for (const Vec3& c : centres)
         {
             ParticleSpec p;
-            p.position = Vec3(c.x() + shift.x(), c.y() + shift.y(), c.z() + base);
+            p.position = c + shift;
             p.radius = r;
             p.block = id;
             rubble.particles.push_back(p);
@@ -104,6 +124,7 @@ Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
         rubble.iceVolume += block.volume;
         x += extent.x() + gap;
         rowDepth = std::max(rowDepth, extent.y());
+        sheetHeight = std::max(sheetHeight, extent.z());
     }
     return rubble;
 }

@@ -271,6 +271,7 @@ std::string particlesVtpText(const ParticleFrame& frame)
     checkLength(frame.tag, n, "tag", owner);
     checkLength(frame.bondCount, n, "bondCount", owner);
     checkLength(frame.fixed, n, "fixed", owner);
+    checkLength(frame.block, n, "block", owner);
 
     std::string text = pieceHeader(n, n, 0);
     text += "      <PointData";
@@ -290,6 +291,7 @@ std::string particlesVtpText(const ParticleFrame& frame)
     arrays.scalars("tag", frame.tag);
     arrays.scalars("bondCount", frame.bondCount);
     arrays.scalars("fixed", frame.fixed);
+    arrays.scalars("block", frame.block);
     text += "      </PointData>\n";
     text += "      <CellData>\n      </CellData>\n";
     appendPoints(text, frame.position);

@@ -478,12 +478,7 @@ void BeamScene::writeCheckpoint()
     }
     MPI_Barrier(comm_);
     lmp_->command("write_restart " + dir + "/liggghts.restart.tmp");
-    std::vector<double> flat;
-    for (const BondState& b : bonds_->localBondStates())
-    {
-        appendBondState(flat, b);
-    }
-    const std::vector<double> all = gatherDoubles(comm_, flat);
+    const std::vector<BondState> bonds = gatherBondStates(comm_, *bonds_);
     if (rank_ == 0)
     {
         Checkpoint c;
@@ -491,10 +486,7 @@ void BeamScene::writeCheckpoint()
         c.curveColumns = curve_.columns();
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();
-        for (std::size_t k = 0; k + bondStateDoubles <= all.size(); k += bondStateDoubles)
-        {
-            c.bonds.push_back(bondStateFrom(&all[k]));
-        }
+        c.bonds = bonds;
         std::filesystem::rename(dir + "/liggghts.restart.tmp", dir + "/liggghts.restart");
         c.write(dir + "/iceBeamDEM.checkpoint");
     }

@@ -1,5 +1,6 @@
 #include "ParticleGather.H"
 
+#include "Checkpoint.H"
 #include "LiggghtsInstance.H"
 
 #include "atom.h"
@@ -33,6 +34,23 @@ std::vector<double> gatherDoubles(MPI_Comm comm, const std::vector<double>& loca
         all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, comm
     );
     return all;
+}
+
+
+std::vector<BondState> gatherBondStates(MPI_Comm comm, const IceBondForces& bonds)
+{
+    std::vector<double> flat;
+    for (const BondState& b : bonds.localBondStates())
+    {
+        appendBondState(flat, b);
+    }
+    const std::vector<double> all = gatherDoubles(comm, flat);
+    std::vector<BondState> states;
+    for (std::size_t k = 0; k + bondStateDoubles <= all.size(); k += bondStateDoubles)
+    {
+        states.push_back(bondStateFrom(&all[k]));
+    }
+    return states;
 }
 
 

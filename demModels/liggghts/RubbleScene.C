@@ -1,0 +1,721 @@
+#include "RubbleScene.H"
+
+#include "AtomicFile.H"
+#include "BondBuilder.H"
+#include "BondModel.H"
+#include "CsvWriter.H"
+#include "Dictionary.H"
+#include "HydrostaticWater.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "JsonObject.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+#include "SceneSetup.H"
+#include "TimeStep.H"
+#include "VtkWriter.H"
+#include "WaterForces.H"
+
+#include "atom.h"
+#include "lammps.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+constexpr int mobileType = 1;
+constexpr int fixedType = 2;
+constexpr int wallType = 3;
+
+double positive(const Dictionary& d, const std::string& key, double def)
+{
+    const double v = d.getScalarOrDefault(key, def);
+    if (!(v > 0.0))
+    {
+        d.fail(key, "must be positive");
+    }
+    return v;
+}
+
+//- A 3 x 3 per-type-pair matrix for `property/global ... peratomtypepair 3`:
+//  `ice` between particles, `wall` wherever the wall type is involved.
+std::string typePairMatrix(double ice, double wall)
+{
+    std::ostringstream m;
+    m << std::setprecision(17);
+    for (int a = 1; a <= 3; ++a)
+        for (int b = 1; b <= 3; ++b)
+            m << (a == wallType || b == wallType ? wall : ice) << (a == 3 && b == 3 ? "" : " ");
+    return m.str();
+}
+
+double percentile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, static_cast<std::size_t>(q*(v.size() - 1) + 0.5))];
+}
+
+} // namespace
+
+
+RubbleSettings RubbleSettings::read(int argc, char** argv)
+{
+    RubbleSettings s;
+    for (int k = 1; k < argc; ++k)
+    {
+        const std::string arg = argv[k];
+        if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
+        else if (arg == "-stage" && k + 1 < argc)
+        {
+            s.stage = argv[++k];
+            if (s.stage != "settle" && s.stage != "bond" && s.stage != "all")
+            {
+                throw InputError("command line", "-stage", "'" + s.stage + "' is not one of: settle bond all");
+            }
+        }
+        else if (arg == "-resume") s.resume = true;
+        else
+        {
+            throw InputError("command line", arg,
+                "unknown option or missing value; allowed: -case DIR -stage settle|bond|all -resume");
+        }
+    }
+    const std::string file = s.caseDir + "/constant/rubbleProperties";
+    const Dictionary d = Dictionary::readFile(file);
+    d.checkKeys({"box", "blocks", "settling", "ends"});
+    const Dictionary& box = d.subDict("box");
+    box.checkKeys({"length", "width", "height"});
+    s.boxLength = positive(box, "length", s.boxLength);
+    s.boxWidth = positive(box, "width", s.boxWidth);
+    s.boxHeight = positive(box, "height", s.boxHeight);
+
+    const Dictionary& b = d.subDict("blocks");
+    b.checkKeys({"shape", "sizes", "syntheticCoeffs", "particleDiameter", "layers", "rubbleThickness",
+                 "expectedPorosity", "seed"});
+    s.shape = blockShapeFromName(b.getWord("shape"), file, b.entryPath("shape"));
+    const std::string sizes = b.getString("sizes");
+    if (sizes != "synthetic")
+    {
+        s.sizesFile = sizes.front() == '/' ? sizes : s.caseDir + "/" + sizes;
+    }
+    if (b.found("syntheticCoeffs"))
+    {
+        const Dictionary& c = b.subDict("syntheticCoeffs");
+        c.checkKeys({"minWidth", "maxWidth", "minAspect", "maxAspect", "minAreaFraction", "maxAreaFraction"});
+        auto& p = s.synthetic;
+        p.minWidth = positive(c, "minWidth", p.minWidth);
+        p.maxWidth = positive(c, "maxWidth", p.maxWidth);
+        p.minAspect = positive(c, "minAspect", p.minAspect);
+        p.maxAspect = positive(c, "maxAspect", p.maxAspect);
+        p.minAreaFraction = positive(c, "minAreaFraction", p.minAreaFraction);
+        p.maxAreaFraction = positive(c, "maxAreaFraction", p.maxAreaFraction);
+        if (p.maxWidth < p.minWidth) c.fail("maxWidth", "must be at least minWidth");
+        if (p.minAspect < 1.0 || p.maxAspect < p.minAspect) c.fail("maxAspect", "need 1 <= minAspect <= maxAspect");
+        if (p.maxAreaFraction > 1.0 || p.maxAreaFraction < p.minAreaFraction)
+            c.fail("maxAreaFraction", "need 0 < minAreaFraction <= maxAreaFraction <= 1");
+    }
+    s.particleDiameter = positive(b, "particleDiameter", s.particleDiameter);
+    s.layers = b.getLabelOrDefault("layers", s.layers);
+    if (s.layers < 1) b.fail("layers", "must be at least 1");
+    s.rubbleThickness = positive(b, "rubbleThickness", s.rubbleThickness);
+    s.expectedPorosity = b.getScalarOrDefault("expectedPorosity", s.expectedPorosity);
+    if (!(s.expectedPorosity >= 0.0 && s.expectedPorosity < 0.9)) b.fail("expectedPorosity", "must lie in [0, 0.9)");
+    s.seed = static_cast<unsigned>(b.getLabelOrDefault("seed", static_cast<int>(s.seed)));
+
+    const Dictionary& st = d.subDict("settling");
+    st.checkKeys({"youngsModulus", "dampingAlpha", "maxTime", "minTime", "kineticEnergyThreshold",
+                  "checkInterval", "checkpointInterval", "sheetGap", "firstSheetClearance", "maxTilt"});
+    s.settlingYoungsModulus = positive(st, "youngsModulus", s.settlingYoungsModulus);
+    s.settlingDampingAlpha = st.getScalarOrDefault("dampingAlpha", s.settlingDampingAlpha);
+    if (!(s.settlingDampingAlpha >= 0.0 && s.settlingDampingAlpha < 1.0)) st.fail("dampingAlpha", "must lie in [0, 1)");
+    s.maxTime = positive(st, "maxTime", s.maxTime);
+    s.minTime = st.getScalarOrDefault("minTime", s.minTime);
+    s.kineticEnergyThreshold = positive(st, "kineticEnergyThreshold", s.kineticEnergyThreshold);
+    s.checkInterval = positive(st, "checkInterval", s.checkInterval);
+    s.checkpointInterval = positive(st, "checkpointInterval", s.checkpointInterval);
+    s.sheetGap = positive(st, "sheetGap", s.sheetGap);
+    s.firstSheetClearance = st.getScalarOrDefault("firstSheetClearance", s.firstSheetClearance);
+    s.maxTilt = st.getScalarOrDefault("maxTilt", s.maxTilt);
+    if (!(s.maxTilt >= 0.0 && s.maxTilt <= 90.0)) st.fail("maxTilt", "must lie in [0, 90] degrees");
+
+    const Dictionary& e = d.subDict("ends");
+    e.checkKeys({"fixedLength"});
+    s.fixedEndLength = e.getScalarOrDefault("fixedLength", s.fixedEndLength);
+    if (!(s.fixedEndLength >= 0.0 && 2*s.fixedEndLength < s.boxLength)) e.fail("fixedLength", "must lie in [0, length/2)");
+    return s;
+}
+
+
+RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
+:
+    comm_(comm),
+    settings_(settings)
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+    ice_ = IceProperties::read(path("constant/iceProperties"));
+    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
+    {
+        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
+            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
+    }
+    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
+    {
+        throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
+            "interface is for laboratory specimens; rubble needs given or heatBalance");
+    }
+    water_ = WaterProperties::readCase(settings_.caseDir);
+    if (water_.level == WaterLevel::cfd)
+    {
+        throw InputError(path("constant/couplingProperties"), "waterLevel",
+            "cfd is not available to rubbleDEM yet; allowed here: none hydrostatic");
+    }
+    // Raining only has to produce the settled geometry: softer contacts and
+    // bonds (a longer time step), unbreakable blocks and more damping.
+    settlingIce_ = ice_;
+    settlingIce_.material.youngsModulus = settings_.settlingYoungsModulus;
+    for (BondFamilyParameters& f : settlingIce_.families)
+    {
+        f.youngsModulus = settings_.settlingYoungsModulus;
+        f.unbreakable = true;
+    }
+    settlingIce_.damping.model = DampingModel::hysteretic;
+    settlingIce_.damping.alpha = settings_.settlingDampingAlpha;
+}
+
+
+RubbleScene::~RubbleScene() = default;
+
+
+std::string RubbleScene::path(const std::string& relative) const
+{
+    return settings_.caseDir + "/" + relative;
+}
+
+
+void RubbleScene::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+void RubbleScene::buildBlocks()
+{
+    RubbleSpec spec;
+    spec.boxLength = settings_.boxLength;
+    spec.boxWidth = settings_.boxWidth;
+    spec.particleDiameter = settings_.particleDiameter;
+    spec.layers = settings_.layers;
+    spec.shape = settings_.shape;
+    spec.iceVolume = (1.0 - settings_.expectedPorosity)*settings_.boxLength*settings_.boxWidth*settings_.rubbleThickness;
+    spec.firstSheetBase =
+        (water_.level == WaterLevel::none ? 0.0 : water_.hydrostatic.surfaceLevel) + settings_.firstSheetClearance;
+    spec.sheetGap = settings_.sheetGap;
+    spec.maxTilt = settings_.maxTilt*M_PI/180.0;
+    spec.seed = settings_.seed;
+    const BlockSizeSource sizes = settings_.sizesFile.empty()
+        ? BlockSizeSource::synthetic(settings_.synthetic)
+        : BlockSizeSource::fromCsv(settings_.sizesFile);
+    rubble_ = buildRubble(spec, sizes);
+    blockOfTag_.clear();
+    for (const ParticleSpec& p : rubble_.particles)
+    {
+        blockOfTag_.push_back(p.block);
+    }
+    std::ostringstream msg;
+    msg << "Blocks: " << rubble_.blocks.size() << " " << name(settings_.shape) << " blocks ("
+        << (settings_.sizesFile.empty() ? "synthetic sizes" : settings_.sizesFile) << "), "
+        << rubble_.particles.size() << " particles of " << settings_.particleDiameter*1e3 << " mm, "
+        << rubble_.iceVolume << " m3 of ice, block thickness " << rubble_.blockThickness << " m";
+    log(msg.str());
+}
+
+
+void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
+{
+    const IceProperties& ice = settling ? settlingIce_ : ice_;
+    const double r = 0.5*settings_.particleDiameter;
+    const double mass = ice.material.density*4.0/3.0*M_PI*r*r*r;
+    settlingContact_ = ContactParameters::of(settlingIce_, settings_.particleDiameter, mass);
+    const ContactParameters contact = ContactParameters::of(ice, settings_.particleDiameter, mass);
+
+    std::vector<ParticleSpec> particles = rubble_.particles;
+    std::vector<int> types(particles.size(), mobileType);
+    if (from)
+    {
+        particles.resize(from->particles.size());
+        types.resize(from->particles.size());
+        blockOfTag_.resize(from->particles.size());
+        for (std::size_t k = 0; k < particles.size(); ++k)
+        {
+            particles[k].position = from->particles[k].position;
+            particles[k].radius = from->particles[k].radius;
+            particles[k].block = blockOfTag_[k] = from->particles[k].block;
+            types[k] = from->particles[k].type;
+        }
+    }
+    double top = 0.0;
+    for (const ParticleSpec& p : particles) top = std::max(top, p.position.z());
+    if (rank_ == 0)
+    {
+        std::filesystem::create_directories(path("DEM"));
+        writeLiggghtsData
+        (
+            path("DEM/rubble.data"), "rubble written by rubbleDEM", particles, ice.material.density,
+            Vec3(-0.05, -0.05, -0.05), Vec3(settings_.boxLength + 0.05, settings_.boxWidth + 0.05, top + 0.5),
+            3, [&](const ParticleSpec& p) { return types[&p - particles.data()]; }
+        );
+    }
+    MPI_Barrier(comm_);
+
+    // Time step from the ice bonds and contacts of the close packing (12 neighbours at most).
+    const TimeStepLimits limits = timeStepLimits(ice, r, 12);
+    dt_ = chooseTimeStep(ice, limits, path("constant/iceProperties"));
+
+    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
+    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    const double skin = 0.2*r;
+    const ScriptVariables variables
+    {
+        {"dataFile", path("DEM/rubble.data")},
+        {"ghostCutoff", exactNumber(bondGhostCutoff(ice, r, skin))},
+        {"neighbourSkin", exactNumber(skin)},
+        {"dt", exactNumber(dt_)},
+        {"gravity", exactNumber(water_.gravity.norm())},
+        {"boxLength", exactNumber(settings_.boxLength)},
+        {"boxWidth", exactNumber(settings_.boxWidth)},
+        {"knMatrix", "\"" + typePairMatrix(contact.normalStiffness, contact.normalStiffness) + "\""},
+        {"ktMatrix", "\"" + typePairMatrix(contact.tangentialStiffness, contact.tangentialStiffness) + "\""},
+        {"gnMatrix", "\"" + typePairMatrix(contact.normalDamping, contact.normalDamping) + "\""},
+        {"gtMatrix", "\"" + typePairMatrix(contact.tangentialDamping, contact.tangentialDamping) + "\""},
+        {"muMatrix", "\"" + typePairMatrix(contact.friction, 0.0) + "\""},
+        {"muRMatrix", "\"" + typePairMatrix(contact.rollingFriction, 0.0) + "\""}
+    };
+    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "rubbleDEM");
+    const std::string script = path("DEM/in.rubbleBeam");
+    if (!std::filesystem::exists(script))
+    {
+        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
+    }
+    lmp_->runScript(script);
+
+    if (from)
+    {
+        LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+        for (int i = 0; i < atom.nlocal; ++i)
+        {
+            const SavedParticle& p = from->particles.at(atom.tag[i] - 1);
+            for (int k = 0; k < 3; ++k)
+            {
+                atom.v[i][k] = p.velocity[k];
+                atom.omega[i][k] = p.angularVelocity[k];
+            }
+        }
+    }
+
+    waterForces_.reset();
+    if (water_.level == WaterLevel::hydrostatic)
+    {
+        waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(water_.hydrostatic));
+        waterForces_->defineForceFix();
+    }
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice, contact.normalStiffness);
+    lmp_->command("fix iceBondForces all external pf/callback 1 1");
+    bonds_->attach("iceBondForces");
+    if (waterForces_)
+    {
+        waterForces_->defineAddedMassFix();
+    }
+    lmp_->command("run 0");     // property/atom is reset by the first run's set-up
+    if (from)
+    {
+        bonds_->restoreBonds(from->bonds);
+    }
+    else
+    {
+        BondBuilder builder(ice);
+        std::vector<BondPair> iceBonds;
+        for (const BondPair& b : builder.build(rubble_.particles))
+        {
+            if (b.family == BondFamily::ice)
+            {
+                iceBonds.push_back(b);
+            }
+        }
+        bonds_->createBonds(rubble_.particles, iceBonds);
+        log("Ice bonds inside the blocks: " + bondStatistics(iceBonds, int(rubble_.particles.size())).summary());
+    }
+    lmp_->command("run 0");
+}
+
+
+double RubbleScene::kineticEnergy() const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double e = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const double m = atom.rmass[i];
+        const double inertia = 0.4*m*atom.radius[i]*atom.radius[i];
+        for (int k = 0; k < 3; ++k)
+        {
+            e += 0.5*m*atom.v[i][k]*atom.v[i][k] + 0.5*inertia*atom.omega[i][k]*atom.omega[i][k];
+        }
+    }
+    return sumOverRanks(comm_, e);
+}
+
+
+SavedRubble RubbleScene::gatherState(double time) const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    std::vector<double> local;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        local.push_back(atom.tag[i]);
+        for (double** a : {atom.x, atom.v, atom.omega})
+        {
+            local.insert(local.end(), a[i], a[i] + 3);
+        }
+        local.push_back(atom.radius[i]);
+        local.push_back(atom.rmass[i]/(4.0/3.0*M_PI*std::pow(atom.radius[i], 3)));
+        local.push_back(atom.type[i]);
+    }
+    const std::vector<double> all = gatherDoubles(comm_, local);
+    SavedRubble s;
+    s.bonds = gatherBondStates(comm_, *bonds_);
+    s.time = time;
+    s.waterLevel = water_.hydrostatic.surfaceLevel;
+    s.description = "rubble of " + std::to_string(blockOfTag_.size()) + " particles, rubbleDEM";
+    if (rank_ == 0)
+    {
+        s.particles.resize(blockOfTag_.size());
+        for (std::size_t k = 0; k + 13 <= all.size(); k += 13)
+        {
+            SavedParticle& p = s.particles.at(static_cast<long>(all[k]) - 1);
+            p.position = Vec3(all[k + 1], all[k + 2], all[k + 3]);
+            p.velocity = Vec3(all[k + 4], all[k + 5], all[k + 6]);
+            p.angularVelocity = Vec3(all[k + 7], all[k + 8], all[k + 9]);
+            p.radius = all[k + 10];
+            p.density = all[k + 11];
+            p.type = static_cast<int>(all[k + 12]);
+            p.block = blockOfTag_[static_cast<long>(all[k]) - 1];
+        }
+    }
+    return s;
+}
+
+
+SettledLayer RubbleScene::measureLayer(double time, double kineticPerParticle, bool atRest) const
+{
+    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    const double r = 0.5*settings_.particleDiameter;
+    std::vector<double> lows, highs;
+    double volume = 0.0, above = 0.0;
+    for (const Vec3& x : positions)
+    {
+        lows.push_back(x.z() - r);
+        highs.push_back(x.z() + r);
+        const double v = 4.0/3.0*M_PI*r*r*r;
+        volume += v;
+        if (water_.level != WaterLevel::none)
+        {
+            above += v - submergedSphereVolume(r, water_.hydrostatic.surfaceLevel - (x.z() - r));
+        }
+    }
+    SettledLayer l;
+    l.time = time;
+    l.kineticEnergyPerParticle = kineticPerParticle;
+    l.atRest = atRest;
+    l.bottom = percentile(lows, 0.01);
+    l.top = percentile(highs, 0.99);
+    l.thickness = l.top - l.bottom;
+    const double box = settings_.boxLength*settings_.boxWidth*l.thickness;
+    l.porosity = 1.0 - rubble_.iceVolume/box;
+    l.spherePorosity = 1.0 - volume/box;
+    l.volumeAboveWater = above/volume;
+    l.freeboard = l.top - water_.hydrostatic.surfaceLevel;
+    return l;
+}
+
+
+void RubbleScene::settle()
+{
+    double t = 0.0;
+    const std::string checkpoint = path("DEM/settling.checkpoint.h5");
+    if (settings_.resume && std::filesystem::exists(checkpoint))
+    {
+        const SavedRubble saved = SavedRubble::read(checkpoint);
+        t = saved.time;
+        log("Resuming the settling from " + checkpoint + " at t = " + jsonNumber(t) + " s");
+        startLiggghts(&saved, true);
+    }
+    else
+    {
+        startLiggghts(nullptr, true);
+    }
+    const long n = static_cast<long>(blockOfTag_.size());
+    std::ostringstream head;
+    head << "Raining and settling: dt " << dt_ << " s, contacts and bonds at E = " << settings_.settlingYoungsModulus
+         << " Pa, blocks unbreakable, hysteretic alpha " << settings_.settlingDampingAlpha << ", water "
+         << toString(water_.level) << "; stops when the kinetic energy per particle < "
+         << settings_.kineticEnergyThreshold << " J (after " << settings_.minTime << " s) or at " << settings_.maxTime << " s";
+    log(head.str());
+
+    const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    const auto start = std::chrono::steady_clock::now();
+    double nextCheckpoint = t + settings_.checkpointInterval;
+    double nextLog = t;
+    int quietChecks = 0;
+    double ke = 0.0;
+    bool first = true;
+    while (t < settings_.maxTime)
+    {
+        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+        first = false;
+        steps_ += chunk;
+        t += chunk*dt_;
+        ke = kineticEnergy()/n;
+        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
+        {
+            throw RunError("settling blew up at t = " + jsonNumber(t) + " s (step " + std::to_string(steps_) + "): "
+                + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
+        }
+        quietChecks = (ke < settings_.kineticEnergyThreshold && t >= settings_.minTime) ? quietChecks + 1 : 0;
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (t >= nextLog || quietChecks >= 2)
+        {
+            std::ostringstream line;
+            line << std::fixed << std::setprecision(2) << "  t = " << t << " s  kinetic energy "
+                 << std::scientific << std::setprecision(2) << ke << " J/particle  "
+                 << std::setprecision(2) << n*double(steps_)/std::max(wall, 1e-9) << " particle-steps/s  "
+                 << "at most " << formatDuration(wall/std::max(t, 1e-9)*(settings_.maxTime - t)) << " left";
+            log(line.str());
+            nextLog = t + 1.0;
+        }
+        if (t >= nextCheckpoint)
+        {
+            const SavedRubble state = gatherState(t);
+            if (rank_ == 0) state.write(checkpoint);
+            nextCheckpoint = t + settings_.checkpointInterval;
+        }
+        if (quietChecks >= 2)
+        {
+            break;
+        }
+    }
+    settleWall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    layer_ = measureLayer(t, ke, quietChecks >= 2);
+    std::ostringstream msg;
+    msg << (layer_.atRest ? "Settled" : "NOT at rest") << " after " << t << " s (" << formatDuration(settleWall_)
+        << "): layer " << layer_.bottom << " to " << layer_.top << " m, thickness " << layer_.thickness
+        << " m, porosity " << layer_.porosity << " (spheres: " << layer_.spherePorosity << "), "
+        << 100*layer_.volumeAboveWater << " % of the ice above water, freeboard " << layer_.freeboard << " m";
+    log(msg.str());
+    const SavedRubble state = gatherState(t);
+    if (rank_ == 0)
+    {
+        state.write(path("DEM/settled.h5"));
+    }
+}
+
+
+void RubbleScene::freezeBond()
+{
+    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    std::vector<ParticleSpec> now(positions.size());
+    for (std::size_t k = 0; k < now.size(); ++k)
+    {
+        now[k].position = positions[k];
+        now[k].radius = 0.5*settings_.particleDiameter;
+        now[k].block = blockOfTag_[k];
+    }
+    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::heatBalance)
+    {
+        double volume = 0.0, surface = 0.0;
+        for (const BuiltBlock& b : rubble_.blocks)
+        {
+            volume += b.volume;
+            surface += b.surface;
+        }
+        const double bondRadius =
+            ice_.family(BondFamily::freeze).radiusMultiplier*0.5*settings_.particleDiameter;
+        strengthModel_.setAreaCorrection(strengthModel_.heatBalanceAreaCorrection(volume, surface, bondRadius));
+    }
+    // The contact forces are those of the contact model the rubble settled with.
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, settlingContact_.normalStiffness);
+    freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
+    const BondModel model(ice_.family(BondFamily::freeze), ice_.damping);
+    std::vector<BondState> states;
+    for (const NewFreezeBond& b : freezeBonds_)
+    {
+        ParticleState pa, pb;
+        pa.position = now[b.pair.i].position;
+        pa.radius = now[b.pair.i].radius;
+        pb.position = now[b.pair.j].position;
+        pb.radius = now[b.pair.j].radius;
+        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
+        s.family = BondFamily::freeze;
+        s.tensileStrength = b.strength.tensile;
+        s.shearStrength = b.strength.shear;
+        states.push_back(s);
+    }
+    bonds_->addBonds(states);
+
+    // The beam's two ends are fixed to the box.
+    LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    const double end = settings_.fixedEndLength;
+    long fixed = 0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (atom.x[i][0] - atom.radius[i] < end || atom.x[i][0] + atom.radius[i] > settings_.boxLength - end)
+        {
+            atom.type[i] = fixedType;
+            ++fixed;
+        }
+    }
+    fixed = sumOverRanks(comm_, fixed);
+
+    std::ostringstream msg;
+    msg << "Freeze-bonds: " << freezeStats_.bonds << " between " << freezeStats_.blockContacts
+        << " touching block pairs (" << freezeStats_.meanBondsPerBlockContact << " per block contact); confinement "
+        << freezeStats_.meanConfinement*1e-3 << " kPa mean, " << freezeStats_.maxConfinement*1e-3
+        << " kPa max; tensile " << freezeStats_.meanTensile*1e-3 << " +- " << freezeStats_.sdTensile*1e-3
+        << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- " << freezeStats_.sdShear*1e-3
+        << " kPa on the bond area; " << strengthModel_.summary() << "; " << fixed << " particles fixed at the ends";
+    log(msg.str());
+}
+
+
+void RubbleScene::writeSummary(double wallSeconds) const
+{
+    const SavedRubble state = gatherState(layer_.time);
+    if (rank_ != 0)
+    {
+        return;
+    }
+    state.write(path("DEM/rubble.h5"));
+    std::filesystem::create_directories(path("postProcessing"));
+    std::filesystem::create_directories(path("VTK"));
+
+    CsvWriter strengths({"tagA", "tagB", "contact_force_N", "confinement_Pa", "tensile_Pa", "shear_Pa"});
+    for (const NewFreezeBond& b : freezeBonds_)
+    {
+        strengths.addRow({double(b.pair.i + 1), double(b.pair.j + 1), b.contactForce, b.strength.confinement,
+                          b.strength.tensile, b.strength.shear});
+    }
+    strengths.write(path("postProcessing/freezeBonds.csv"));
+
+    ParticleFrame particles;
+    std::vector<int> bondCount(state.particles.size(), 0);
+    BondFrame network;
+    for (const BondState& b : state.bonds)
+    {
+        ++bondCount[b.tagA - 1];
+        ++bondCount[b.tagB - 1];
+        network.endA.push_back(state.particles[b.tagA - 1].position);
+        network.endB.push_back(state.particles[b.tagB - 1].position);
+        network.family.push_back(static_cast<int>(b.family));
+    }
+    for (std::size_t k = 0; k < state.particles.size(); ++k)
+    {
+        const SavedParticle& p = state.particles[k];
+        particles.position.push_back(p.position);
+        particles.velocity.push_back(p.velocity);
+        particles.radius.push_back(p.radius);
+        particles.tag.push_back(long(k + 1));
+        particles.bondCount.push_back(bondCount[k]);
+        particles.fixed.push_back(p.type == fixedType);
+        particles.block.push_back(p.block);
+    }
+    writeParticlesVtp(path("VTK/rubble_particles.vtp"), particles);
+    writeBondsVtp(path("VTK/rubble_bonds.vtp"), network);
+
+    long iceBonds = 0;
+    for (const BondState& b : state.bonds) iceBonds += b.family == BondFamily::ice;
+    JsonObject j;
+    j.add("case", "rubbleBeam")
+     .add("block_shape", name(settings_.shape))
+     .add("blocks", long(rubble_.blocks.size()))
+     .add("block_ice_volume_m3", rubble_.iceVolume)
+     .add("settled_time_s", layer_.time)
+     .add("at_rest", layer_.atRest)
+     .add("kinetic_energy_per_particle_J", layer_.kineticEnergyPerParticle)
+     .add("layer_bottom_m", layer_.bottom)
+     .add("layer_top_m", layer_.top)
+     .add("thickness_m", layer_.thickness)
+     .add("porosity", layer_.porosity)
+     .add("sphere_porosity", layer_.spherePorosity)
+     .add("ice_volume_above_water_fraction", layer_.volumeAboveWater)
+     .add("freeboard_m", layer_.freeboard)
+     .add("water_level_m", water_.hydrostatic.surfaceLevel)
+     .add("freeze_bonds", long(freezeStats_.bonds))
+     .add("block_contacts", long(freezeStats_.blockContacts))
+     .add("mean_bonds_per_block_contact", freezeStats_.meanBondsPerBlockContact)
+     .add("freeze_bond_tensile_mean_Pa", freezeStats_.meanTensile)
+     .add("freeze_bond_tensile_sd_Pa", freezeStats_.sdTensile)
+     .add("freeze_bond_shear_mean_Pa", freezeStats_.meanShear)
+     .add("freeze_bond_shear_sd_Pa", freezeStats_.sdShear)
+     .add("confinement_mean_Pa", freezeStats_.meanConfinement)
+     .add("confinement_max_Pa", freezeStats_.maxConfinement)
+     .add("area_correction", strengthModel_.areaCorrection())
+     .add("ice_bonds", iceBonds)
+     .add("particles", long(state.particles.size()))
+     .add("bonds", long(state.bonds.size()))
+     .add("steps", steps_)
+     .add("dt", dt_)
+     .add("ranks", long(ranks_))
+     .add("settling_wall_s", settleWall_)
+     .add("wall_s", wallSeconds);
+    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+}
+
+
+void RubbleScene::run()
+{
+    const auto start = std::chrono::steady_clock::now();
+    log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
+        + std::to_string(ranks_) + " rank(s)");
+    buildBlocks();
+    if (settings_.stage == "bond")
+    {
+        const std::string settled = path("DEM/settled.h5");
+        if (!std::filesystem::exists(settled))
+        {
+            throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
+        }
+        const SavedRubble saved = SavedRubble::read(settled);
+        startLiggghts(&saved, true);
+        layer_ = measureLayer(saved.time, kineticEnergy()/double(blockOfTag_.size()), true);
+    }
+    else
+    {
+        settle();
+    }
+    if (settings_.stage != "settle")
+    {
+        freezeBond();
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (settings_.stage != "settle")
+    {
+        writeSummary(wall);
+    }
+    log("Wall time " + formatDuration(wall));
+}
+
+} // namespace iceDEM
