@@ -134,10 +134,16 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
 
     const Dictionary& st = d.subDict("settling");
     st.checkKeys({"youngsModulus", "dampingAlpha", "maxTime", "minTime", "kineticEnergyThreshold",
-                  "checkInterval", "checkpointInterval", "sheetGap", "firstSheetClearance", "maxTilt"});
+                  "checkInterval", "checkpointInterval", "sheetGap", "firstSheetClearance", "maxTilt",
+                  "frictionCoefficient"});
     s.settlingYoungsModulus = positive(st, "youngsModulus", s.settlingYoungsModulus);
     s.settlingDampingAlpha = st.getScalarOrDefault("dampingAlpha", s.settlingDampingAlpha);
     if (!(s.settlingDampingAlpha >= 0.0 && s.settlingDampingAlpha < 1.0)) st.fail("dampingAlpha", "must lie in [0, 1)");
+    if (st.found("frictionCoefficient"))
+    {
+        s.settlingFriction = st.getScalar("frictionCoefficient");
+        if (!(s.settlingFriction >= 0.0)) st.fail("frictionCoefficient", "must not be negative");
+    }
     s.maxTime = positive(st, "maxTime", s.maxTime);
     s.minTime = st.getScalarOrDefault("minTime", s.minTime);
     s.kineticEnergyThreshold = positive(st, "kineticEnergyThreshold", s.kineticEnergyThreshold);
@@ -192,6 +198,10 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     }
     settlingIce_.damping.model = DampingModel::hysteretic;
     settlingIce_.damping.alpha = settings_.settlingDampingAlpha;
+    if (settings_.settlingFriction >= 0.0)
+    {
+        settlingIce_.material.frictionCoefficient = settings_.settlingFriction;
+    }
 }
 
 
