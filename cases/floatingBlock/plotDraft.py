@@ -46,7 +46,10 @@ def main():
     top.set_title(f"Floating block: {s['particles']} bonded ice spheres, {s['ranks']} rank(s); "
                   f"final submerged fraction {s['submerged_volume_fraction']:.4f}")
 
-    bottom.semilogy(t, [max(k, 1e-30) for k in c["kineticEnergy"]], label="kinetic energy [J]")
+    peak = max(c["kineticEnergy"])
+    bottom.semilogy(t, [max(k, 1e-12 * peak) for k in c["kineticEnergy"]], label="kinetic energy [J]")
+    rest = s["rest_threshold_over_MgH"] * s["kinetic_energy_J"] / s["kinetic_energy_over_MgH"]
+    bottom.axhline(rest, color="k", ls="--", lw=0.8, label="at-rest threshold")
     bottom.set_ylabel("kinetic energy [J]")
     bottom.set_xlabel("time [s]")
     right = bottom.twinx()

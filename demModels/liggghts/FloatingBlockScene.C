@@ -382,6 +382,9 @@ void FloatingBlockScene::run()
         + std::to_string(ranks_) + " rank(s)");
     buildParticles();
     startLiggghts();
+    int owned = lmp_->engine().atom->nlocal;
+    atomsPerRank_.assign(ranks_, 0);
+    MPI_Gather(&owned, 1, MPI_INT, atomsPerRank_.data(), 1, MPI_INT, 0, comm_);
 
     const long stepsPerSample = std::max(1L, std::lround(settings_.sampleInterval / dt_));
     const long samplesPerFrame = std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
@@ -493,6 +496,9 @@ void FloatingBlockScene::writeSummary
       << "  \"steps\": " << steps << ",\n"
       << "  \"dt\": " << dt_ << ",\n"
       << "  \"ranks\": " << ranks_ << ",\n"
+      << "  \"atoms_per_rank_at_start\": [";
+    for (int k = 0; k < ranks_; ++k) j << (k ? ", " : "") << atomsPerRank_[k];
+    j << "],\n"
       << "  \"wall_s\": " << wall << "\n"
       << "}\n";
     writeFileAtomically(path("postProcessing/summary.json"), j.str());

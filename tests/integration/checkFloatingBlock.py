@@ -35,6 +35,7 @@ def check_physics(case):
 def main(one, two):
     sa, sb = check_physics(one), check_physics(two)
     assert sa["ranks"] == 1 and sb["ranks"] == 2, (sa["ranks"], sb["ranks"])
+    assert min(sb["atoms_per_rank_at_start"]) > 0, f"one rank holds no atom: {sb['atoms_per_rank_at_start']}"
     a, b = draft_curve(one), draft_curve(two)
     assert len(a) == len(b), (len(a), len(b))
     worst = 0.0
