@@ -89,7 +89,7 @@ int main(int argc, char** argv)
     };
 
     {
-        LiggghtsInstance lmp(MPI_COMM_WORLD, "none");
+        LiggghtsInstance lmp(MPI_COMM_WORLD, "log.waterSphere.liggghts");
         for (const char* c :
         {
             "atom_style sphere", "atom_modify map array", "boundary f f f", "newton off",
@@ -104,7 +104,10 @@ int main(int argc, char** argv)
             "fix m6 all property/global coefficientRollingFriction peratomtypepair 1 0.0",
             "pair_style gran model hooke/stiffness tangential history absolute_damping on",
             "pair_coeff * *", "timestep 2e-4",
-            "fix gravity all gravity 9.81 vector 0 0 -1"
+            "fix gravity all gravity 9.81 vector 0 0 -1",
+            // A floor nobody reaches: LIGGGHTS' wall fixes must not upset the order checks.
+            "fix floor all wall/gran model hooke/stiffness tangential history "
+            "primitive type 1 zplane -11.9 absolute_damping on"
         })
         {
             lmp.command(c);
