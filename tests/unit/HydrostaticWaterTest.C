@@ -267,6 +267,15 @@ TEST(SingleSphere, HeavySphereSettlesToTerminalVelocity)
 }
 
 
+TEST(SingleSphere, VeryLightSphereRisesStablyWithImplicitAddedMass)
+{
+    // rho_p/rho_w = 0.05: added mass 10 times the sphere's own, where an
+    // explicit added-mass force (-m_a times the last acceleration) would
+    // multiply any error by -10 every step.
+    checkSettling(0.001, 50.0, 0.5, 1e-4);
+}
+
+
 TEST(SingleSphere, TerminalVelocityInStokesLimit)
 {
     // Re << 1: v = 2 (rho_p - rho_w) g r^2 / (9 mu) (1 + 0.15 Re^0.687 correction small).
