@@ -310,7 +310,7 @@ FloatingBlockScene::Sample FloatingBlockScene::sample() const
 {
     const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
     double lowest = HUGE_VAL, highest = -HUGE_VAL;
-    double sums[5] = {0, 0, 0, 0, 0};   // m x, m y, m z, kinetic energy, (unused)
+    double sums[4] = {0, 0, 0, 0};   // m x, m y, m z, kinetic energy
     for (int i = 0; i < atom.nlocal; ++i)
     {
         const double m = atom.rmass[i], r = atom.radius[i];
@@ -322,8 +322,8 @@ FloatingBlockScene::Sample FloatingBlockScene::sample() const
             sums[3] += 0.5 * m * atom.v[i][k] * atom.v[i][k] + 0.2 * m * r * r * atom.omega[i][k] * atom.omega[i][k];
         }
     }
-    double total[5];
-    MPI_Allreduce(sums, total, 5, MPI_DOUBLE, MPI_SUM, comm_);
+    double total[4];
+    MPI_Allreduce(sums, total, 4, MPI_DOUBLE, MPI_SUM, comm_);
     double extremes[2] = {lowest, -highest}, global[2];
     MPI_Allreduce(extremes, global, 2, MPI_DOUBLE, MPI_MIN, comm_);
     const WaterForceTotals water = waterForces_->totals();
