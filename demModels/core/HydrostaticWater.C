@@ -151,4 +151,31 @@ double floatingSphereDraft(double radius, double particleDensity, double waterDe
     );
 }
 
+
+
+double levelDraft(const std::vector<ParticleSpec>& spheres, double densityRatio)
+{
+    if (spheres.empty() || !(densityRatio > 0.0 && densityRatio < 1.0))
+    {
+        throw std::invalid_argument("levelDraft needs spheres and a density ratio in (0, 1)");
+    }
+    double bottom = HUGE_VAL, top = -HUGE_VAL, volume = 0.0;
+    for (const ParticleSpec& p : spheres)
+    {
+        bottom = std::min(bottom, p.position.z() - p.radius);
+        top = std::max(top, p.position.z() + p.radius);
+        volume += 4.0 / 3.0 * M_PI * p.radius * p.radius * p.radius;
+    }
+    auto excess = [&](double draft)
+    {
+        double submerged = 0.0;
+        for (const ParticleSpec& p : spheres)
+        {
+            submerged += submergedSphereVolume(p.radius, draft - (p.position.z() - p.radius - bottom));
+        }
+        return submerged - densityRatio * volume;
+    };
+    return bisect(excess, 0.0, top - bottom);
+}
+
 } // namespace iceDEM

@@ -7,7 +7,9 @@
 #include "lammps.h"
 #include "modify.h"
 
+#include <cmath>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 
 namespace iceDEM
@@ -113,8 +115,19 @@ void WaterForces::addForces(double** fexternal)
         {
             continue;
         }
-        const SphereWaterLoad load =
-            water_.sphereLoad(atom.radius[i], atom.x[i][2], Vec3(atom.v[i][0], atom.v[i][1], atom.v[i][2]));
+        const Vec3 velocity(atom.v[i][0], atom.v[i][1], atom.v[i][2]);
+        if (!std::isfinite(atom.x[i][2]) || !std::isfinite(velocity.squaredNorm()))
+        {
+            if (failure_.empty())
+            {
+                std::ostringstream msg;
+                msg << "non-finite position or velocity of particle " << atom.tag[i] << " (step "
+                    << lmp_.step() << ", time " << lmp_.time() << " s): the run has blown up";
+                failure_ = msg.str();
+            }
+            continue;
+        }
+        const SphereWaterLoad load = water_.sphereLoad(atom.radius[i], atom.x[i][2], velocity);
         const Vec3 force = load.buoyancy + load.drag;
         for (int k = 0; k < 3; ++k)
         {

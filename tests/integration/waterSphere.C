@@ -12,6 +12,7 @@
 
 #include "HydrostaticWater.H"
 #include "LiggghtsInstance.H"
+#include "StlWriter.H"
 #include "WaterForces.H"
 
 #include "atom.h"
@@ -89,7 +90,7 @@ int main(int argc, char** argv)
     };
 
     {
-        LiggghtsInstance lmp(MPI_COMM_WORLD, "none");
+        LiggghtsInstance lmp(MPI_COMM_WORLD, "log.waterSphere.liggghts");
         for (const char* c :
         {
             "atom_style sphere", "atom_modify map array", "boundary f f f", "newton off",
@@ -104,11 +105,26 @@ int main(int argc, char** argv)
             "fix m6 all property/global coefficientRollingFriction peratomtypepair 1 0.0",
             "pair_style gran model hooke/stiffness tangential history absolute_damping on",
             "pair_coeff * *", "timestep 2e-4",
-            "fix gravity all gravity 9.81 vector 0 0 -1"
+            "fix gravity all gravity 9.81 vector 0 0 -1",
+            // A floor nobody reaches: LIGGGHTS' wall fixes must not upset the order checks.
+            "fix floor all wall/gran model hooke/stiffness tangential history "
+            "primitive type 1 zplane -11.9 absolute_damping on"
         })
         {
             lmp.command(c);
         }
+        // A moving mesh wall (a platen, as in the punch test) far from the
+        // spheres: its fixes must not upset the order checks either.
+        const std::string platen = "waterSphere.platen.stl";
+        if (rank == 0)
+        {
+            writeCylinderStl(platen, Vec3(0.0, 0.0, -11.0), Vec3(1.0, 0.0, 0.0), 0.05, 0.1, 16, "platen");
+        }
+        MPI_Barrier(MPI_COMM_WORLD);
+        lmp.command("fix platen all mesh/surface/stress file " + platen + " type 1");
+        lmp.command("fix platenWall all wall/gran model hooke/stiffness tangential history mesh n_meshes 1 "
+                    "meshes platen absolute_damping on");
+        lmp.command("fix movePlaten all move/mesh mesh platen linear 0 0 -0.001");
         for (std::size_t k = 0; k < probes.size(); ++k)
         {
             const Probe& p = probes[k];
@@ -205,6 +221,11 @@ int main(int argc, char** argv)
                   && std::abs(totals.buoyancy.z() - w.density * w.gravity * totals.submergedVolume) < 1e-12, s.str());
         }
 
+        if (rank == 0)
+        {
+            check(forces.failure().empty(), "no order problem reported with gravity, wall and moving-mesh fixes"
+                  + (forces.failure().empty() ? std::string() : ": " + forces.failure()));
+        }
         // Guards: a force fix after the added-mass fix is reported ...
         lmp.command("fix late all external pf/callback 1 1");
         lmp.command("run 1 pre no post no");

@@ -267,6 +267,15 @@ TEST(SingleSphere, HeavySphereSettlesToTerminalVelocity)
 }
 
 
+TEST(SingleSphere, VeryLightSphereRisesStablyWithImplicitAddedMass)
+{
+    // rho_p/rho_w = 0.05: added mass 10 times the sphere's own, where an
+    // explicit added-mass force (-m_a times the last acceleration) would
+    // multiply any error by -10 every step.
+    checkSettling(0.001, 50.0, 0.5, 1e-4);
+}
+
+
 TEST(SingleSphere, TerminalVelocityInStokesLimit)
 {
     // Re << 1: v = 2 (rho_p - rho_w) g r^2 / (9 mu) (1 + 0.15 Re^0.687 correction small).
@@ -315,4 +324,35 @@ TEST(FloatingSphere, IceSphereDroppedOnTheWaterComesToRestAtItsDraft)
     EXPECT_LT(worstDraftError, 0.01);
     // At rest: kinetic energy below 1e-6 of the energy scale m g r.
     EXPECT_LT(worstKinetic, 1e-6 * mass * g * r);
+}
+
+
+TEST(FloatingBlock, LevelDraftOfSphereLattices)
+{
+    // One sphere: the single-sphere draft.
+    const double r = 0.0275;
+    ParticleSpec one{Vec3(0.3, -0.2, 1.7), r};
+    EXPECT_NEAR(levelDraft({one}, 0.917), floatingSphereDraft(r, 917.0, 1000.0), 1e-14);
+
+    // Simple cubic stack of 4 layers (2 x 3 columns): 3.668 layers' volume
+    // submerged, i.e. 3 whole layers and a cap x^2 (3 - 2x) = 0.668 of the
+    // top one, x its submerged height over 2r; draft (3 + x) 2r.
+    std::vector<ParticleSpec> block;
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 4; ++k)
+                block.push_back({Vec3(2 * r * i, 2 * r * j, 2 * r * k), r});
+    double lo = 0.0, hi = 1.0;
+    for (int n = 0; n < 100; ++n)
+    {
+        const double x = 0.5 * (lo + hi);
+        (x * x * (3 - 2 * x) < 4 * 0.917 - 3 ? lo : hi) = x;
+    }
+    const double draft = levelDraft(block, 0.917);
+    EXPECT_NEAR(draft, (3.0 + lo) * 2.0 * r, 1e-12);
+    // ... which is not 0.917 of the height: the spheres' volume is bunched at
+    // the layers' mid-planes.
+    EXPECT_NEAR(draft / (8.0 * r), 0.9034, 1e-4);
+
+    EXPECT_THROW(levelDraft(block, 1.02), std::invalid_argument);
 }
