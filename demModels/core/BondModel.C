@@ -40,6 +40,7 @@ BondStiffness BondStiffness::of
     k.bondRadius = family.radiusMultiplier * std::min(radiusA, radiusB);
     const double rb2 = k.bondRadius * k.bondRadius;
     k.area = M_PI * rb2;
+    k.area15 = k.area * std::sqrt(k.area);
     k.inertia = M_PI * rb2 * rb2 / 4.0;
     k.polarInertia = 2.0 * k.inertia;
     k.beamLength = radiusA + radiusB;
@@ -105,7 +106,7 @@ BreakMode BondModel::breakage
 
     const double sigmaT = state.tensileStrength;
     const double tau = state.shearStrength;
-    const double area15 = k.area * std::sqrt(k.area);
+    const double area15 = k.area15;
 
     BreakMode mode = BreakMode::none;
     double worst = 1.0;
@@ -155,12 +156,24 @@ BondLoad BondModel::evaluate
     double dt
 ) const
 {
+    return evaluate(state, BondStiffness::of(family_, a.radius, b.radius), a, b, dt);
+}
+
+
+BondLoad BondModel::evaluate
+(
+    BondState& state,
+    const BondStiffness& k,
+    const ParticleState& a,
+    const ParticleState& b,
+    double dt
+) const
+{
     BondLoad load;
 
     const Vec3 separation = b.position - a.position;
     const double length = separation.norm();
     const Vec3 n = separation / length;
-    const BondStiffness k = BondStiffness::of(family_, a.radius, b.radius);
 
     // Lever arms split the actual distance in the ratio of the radii, so that
     // the shear force's torques balance its moment and angular momentum is exact.

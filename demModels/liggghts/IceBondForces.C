@@ -6,13 +6,16 @@
 #include "LiggghtsInstance.H"
 
 #include "atom.h"
+#include "fix.h"
 #include "fix_external.h"
 #include "lammps.h"
-#include "update.h"
+#include "modify.h"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <tuple>
 
 namespace iceDEM
 {
@@ -29,34 +32,37 @@ Vec3 row(double** a, int i)
 } // namespace
 
 
-void BondLoadSums::reset(int atoms, int capacity)
+//- Lets LIGGGHTS tell IceBondForces that it is about to move atoms (between
+//  ranks, or re-sorting them on one) or write a restart file: the moment the
+//  per-atom table must hold every history. LIGGGHTS has no input-script style
+//  for it; IceBondForces::attach puts it in a placeholder fix's place.
+class BondTableSync : public LAMMPS_NS::Fix
 {
-    capacity_ = capacity;
-    count_.assign(atoms, 0);
-    entries_.resize(static_cast<std::size_t>(atoms) * capacity);
-}
+public:
+    BondTableSync(LAMMPS_NS::LAMMPS* engine, char** args, IceBondForces& owner)
+    :
+        Fix(engine, 3, args),
+        owner_(&owner)
+    {}
 
+    int setmask() override { return LAMMPS_NS::FixConst::PRE_EXCHANGE; }
+    void setup_pre_exchange() override { sync(); }
+    void pre_exchange() override { sync(); }
 
-void BondLoadSums::add(int atom, long partnerTag, const Vec3& force, const Vec3& torque)
-{
-    entries_[static_cast<std::size_t>(atom) * capacity_ + count_[atom]++] = {partnerTag, force, torque};
-}
+    //- The owner is gone: nothing to synchronise any more.
+    void detach() { owner_ = nullptr; }
 
-
-void BondLoadSums::addSumTo(int atom, double* force, double* torque)
-{
-    Entry* first = &entries_[static_cast<std::size_t>(atom) * capacity_];
-    Entry* last = first + count_[atom];
-    std::sort(first, last, [](const Entry& x, const Entry& y) { return x.partnerTag < y.partnerTag; });
-    for (const Entry* e = first; e != last; ++e)
+private:
+    void sync()
     {
-        for (int k = 0; k < 3; ++k)
+        if (owner_)
         {
-            force[k] += e->force[k];
-            torque[k] += e->torque[k];
+            owner_->syncTable();
         }
     }
-}
+
+    IceBondForces* owner_;
+};
 
 
 IceBondForces::IceBondForces
@@ -76,6 +82,21 @@ IceBondForces::IceBondForces
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
 {}
+
+
+IceBondForces::~IceBondForces()
+{
+    LAMMPS_NS::Modify& modify = *lmp_.engine().modify;
+    const std::string syncId = std::string(BondTable::fixId) + "Sync";
+    const int index = modify.find_fix(syncId.c_str());
+    if (index >= 0)
+    {
+        if (auto* sync = dynamic_cast<BondTableSync*>(modify.fix[index]))
+        {
+            sync->detach();
+        }
+    }
+}
 
 
 ParticleState IceBondForces::particle(int i) const
@@ -113,6 +134,7 @@ void IceBondForces::createBonds
             models_[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, spec(pair.i), spec(pair.j))
         );
     }
+    syncTable();
     for (const BondState& state : states)
     {
         store(state);
@@ -122,6 +144,7 @@ void IceBondForces::createBonds
 
 void IceBondForces::restoreBonds(const std::vector<BondState>& states)
 {
+    listIsCurrent_ = false;
     for (int i = 0; i < lmp_.engine().atom->nlocal; ++i)
     {
         table_.clear(i);
@@ -154,7 +177,108 @@ void IceBondForces::store(const BondState& state)
 }
 
 
-std::vector<BondState> IceBondForces::localBondStates() const
+BondTable& IceBondForces::table()
+{
+    syncTable();
+    return table_;
+}
+
+
+void IceBondForces::syncTable()
+{
+    if (!listIsCurrent_)
+    {
+        return;
+    }
+    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    for (const ListedBond& bond : list_)
+    {
+        for (const auto& [own, other, local] :
+            {std::tuple(bond.state.tagA, bond.state.tagB, bond.a), std::tuple(bond.state.tagB, bond.state.tagA, bond.b)})
+        {
+            if (local < atom.nlocal)
+            {
+                table_.write(local, table_.find(local, other), bond.state, own);
+            }
+        }
+    }
+    listIsCurrent_ = false;
+}
+
+
+void IceBondForces::rebuildList()
+{
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int nlocal = atom.nlocal;
+    const int* tag = atom.tag;
+    std::map<std::tuple<int, double, double>, int> stiffnessIndex;
+    list_.clear();
+    stiffnesses_.clear();
+    for (int i = 0; i < nlocal; ++i)
+    {
+        const int n = table_.count(i);
+        for (int slot = 0; slot < n; ++slot)
+        {
+            const long partnerTag = table_.partner(i, slot);
+            const int j = atom.map(static_cast<int>(partnerTag));
+            if (j < 0)
+            {
+                std::ostringstream msg;
+                msg << "bond partner " << partnerTag << " of particle " << tag[i]
+                    << " at (" << row(atom.x, i).transpose() << ") is not within this rank's"
+                    << " ghost cut-off: the bond has stretched too far, or the partner left the simulation box";
+                fail(msg.str());
+                continue;
+            }
+            if (j < nlocal && tag[i] > partnerTag)
+            {
+                continue;   // listed from the partner, which has the lower tag
+            }
+            ListedBond bond;
+            bond.state = table_.read(i, slot, tag[i]);
+            const bool iIsA = tag[i] < partnerTag;
+            bond.a = iIsA ? i : j;
+            bond.b = iIsA ? j : i;
+            const int family = static_cast<int>(bond.state.family);
+            const auto key = std::make_tuple(family, atom.radius[bond.a], atom.radius[bond.b]);
+            const auto known = stiffnessIndex.find(key);
+            if (known != stiffnessIndex.end())
+            {
+                bond.stiffness = known->second;
+            }
+            else
+            {
+                bond.stiffness = static_cast<int>(stiffnesses_.size());
+                stiffnessIndex.emplace(key, bond.stiffness);
+                stiffnesses_.push_back
+                (
+                    BondStiffness::of(models_[family].parameters(), atom.radius[bond.a], atom.radius[bond.b])
+                );
+            }
+            list_.push_back(bond);
+        }
+    }
+    std::sort(list_.begin(), list_.end(), [](const ListedBond& x, const ListedBond& y)
+    {
+        return std::tie(x.state.tagA, x.state.tagB) < std::tie(y.state.tagA, y.state.tagB);
+    });
+    listIsCurrent_ = true;
+    listedLocal_ = nlocal;
+    listedGhost_ = atom.nghost;
+}
+
+
+void IceBondForces::removeFromTable(int atom, long partnerTag)
+{
+    const int slot = table_.find(atom, partnerTag);
+    if (slot >= 0)
+    {
+        table_.remove(atom, slot);
+    }
+}
+
+
+std::vector<BondState> IceBondForces::tableBondStates() const
 {
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     std::vector<BondState> states;
@@ -173,10 +297,49 @@ std::vector<BondState> IceBondForces::localBondStates() const
 }
 
 
+std::vector<BondState> IceBondForces::localBondStates() const
+{
+    if (!listIsCurrent_)
+    {
+        return tableBondStates();
+    }
+    const int nlocal = lmp_.engine().atom->nlocal;
+    std::vector<BondState> states;
+    for (const ListedBond& bond : list_)
+    {
+        if (bond.a < nlocal)
+        {
+            states.push_back(bond.state);
+        }
+    }
+    return states;
+}
+
+
 void IceBondForces::attach(const std::string& fixExternalId)
 {
     auto& fix = static_cast<LAMMPS_NS::FixExternal&>(lmp_.fix(fixExternalId));
     fix.set_callback(&IceBondForces::callback, this);
+
+    // LIGGGHTS makes fixes only of its own styles: make a placeholder, then
+    // put the synchronising fix in its place before the next run's set-up
+    // reads which fixes want pre_exchange calls.
+    LAMMPS_NS::LAMMPS& engine = lmp_.engine();
+    LAMMPS_NS::Modify& modify = *engine.modify;
+    std::string id = std::string(BondTable::fixId) + "Sync";
+    if (modify.find_fix(id.c_str()) >= 0)
+    {
+        return;
+    }
+    lmp_.command("fix " + id + " all external pf/callback 1 1");
+    const int index = modify.find_fix(id.c_str());
+    std::string group = "all";
+    std::string style = "iceBondTableSync";
+    char* args[] = {id.data(), group.data(), style.data()};
+    auto* sync = new BondTableSync(&engine, args, *this);
+    delete modify.fix[index];
+    modify.fix[index] = sync;
+    modify.fmask[index] = sync->setmask();
 }
 
 
@@ -207,107 +370,116 @@ void IceBondForces::compute()
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     const int nlocal = atom.nlocal;
-    const int* tag = atom.tag;
+    if (listIsCurrent_ && (nlocal != listedLocal_ || atom.nghost != listedGhost_))
+    {
+        fail("LIGGGHTS moved atoms without synchronising the bond table first (internal error)");
+        return;
+    }
+    if (!listIsCurrent_)
+    {
+        rebuildList();
+    }
     const double dt = lmp_.timeStep();
     const double time = lmp_.time();
-    loads_.reset(nlocal, table_.capacity());
-
-    for (int i = 0; i < nlocal; ++i)
+    double** const x = atom.x;
+    double** const v = atom.v;
+    double** const omega = atom.omega;
+    double** const f = atom.f;
+    double** const torque = atom.torque;
+    const double* const radius = atom.radius;
+    const double* const rmass = atom.rmass;
+    auto particle = [&](int i)
     {
-        int n = table_.count(i);
-        for (int slot = 0; slot < n;)
+        ParticleState p;
+        p.position = Vec3(x[i][0], x[i][1], x[i][2]);
+        p.velocity = Vec3(v[i][0], v[i][1], v[i][2]);
+        p.angularVelocity = Vec3(omega[i][0], omega[i][1], omega[i][2]);
+        p.radius = radius[i];
+        p.mass = rmass[i];
+        return p;
+    };
+    auto addTo = [&](int i, const Vec3& force, const Vec3& moment)
+    {
+        for (int k = 0; k < 3; ++k)
         {
-            const long partnerTag = table_.partner(i, slot);
-            const int j = atom.map(static_cast<int>(partnerTag));
-            if (j < 0)
-            {
-                std::ostringstream msg;
-                msg << "bond partner " << partnerTag << " of particle " << tag[i]
-                    << " at (" << row(atom.x, i).transpose() << ") is not within this rank's"
-                    << " ghost cut-off: the bond has stretched too far, or the partner left the simulation box";
-                fail(msg.str());
-                ++slot;
-                continue;
-            }
-            const bool partnerLocal = j < nlocal;
-            if (partnerLocal && tag[i] > partnerTag)
-            {
-                ++slot;   // evaluated from the partner, which has the lower tag
-                continue;
-            }
+            f[i][k] += force[k];
+            torque[i][k] += moment[k];
+        }
+    };
 
-            BondState state = table_.read(i, slot, tag[i]);
-            const bool iIsA = tag[i] < partnerTag;
-            const int a = iIsA ? i : j;
-            const int b = iIsA ? j : i;
-            const ParticleState pa = particle(a);
-            const ParticleState pb = particle(b);
-            const BondLoad load = models_[static_cast<int>(state.family)].evaluate(state, pa, pb, dt);
-            const int partnerSlot = partnerLocal ? table_.find(j, tag[i]) : -1;
+    bool anyBroke = false;
+    for (ListedBond& bond : list_)
+    {
+        BondState& state = bond.state;
+        const ParticleState pa = particle(bond.a);
+        const ParticleState pb = particle(bond.b);
+        const BondLoad load =
+            models_[static_cast<int>(state.family)].evaluate(state, stiffnesses_[bond.stiffness], pa, pb, dt);
 
-            if (load.broke != BreakMode::none)
+        if (load.broke != BreakMode::none)
+        {
+            if (bond.a < nlocal)
             {
-                if (a < nlocal)
-                {
-                    breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
-                }
-                table_.remove(i, slot);
-                if (partnerSlot >= 0)
-                {
-                    table_.remove(j, partnerSlot);
-                }
-                --n;
-                continue;
+                breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
+                removeFromTable(bond.a, state.tagB);
             }
+            if (bond.b < nlocal)
+            {
+                removeFromTable(bond.b, state.tagA);
+            }
+            bond.a = -1;
+            anyBroke = true;
+            continue;
+        }
 
-            Vec3 forceOnA = load.forceOnA;
-            const Vec3 separation = pb.position - pa.position;
-            const double overlap = pa.radius + pb.radius - separation.norm();
-            if (overlap > 0.0)
-            {
-                // Cancel the contact's normal spring: a bonded pair has the bond only.
-                forceOnA += contactNormalStiffness_ * overlap * separation.normalized();
-            }
-
-            if (a < nlocal)
-            {
-                loads_.add(a, state.tagB, forceOnA, load.torqueOnA);
-            }
-            if (b < nlocal)
-            {
-                loads_.add(b, state.tagA, -forceOnA, load.torqueOnB);
-            }
-            table_.write(i, slot, state, tag[i]);
-            if (partnerSlot >= 0)
-            {
-                table_.write(j, partnerSlot, state, partnerTag);
-            }
-            ++slot;
+        Vec3 forceOnA = load.forceOnA;
+        const Vec3 separation = pb.position - pa.position;
+        const double overlap = pa.radius + pb.radius - separation.norm();
+        if (overlap > 0.0)
+        {
+            // Cancel the contact's normal spring: a bonded pair has the bond only.
+            forceOnA += contactNormalStiffness_ * overlap * separation.normalized();
+        }
+        if (bond.a < nlocal)
+        {
+            addTo(bond.a, forceOnA, load.torqueOnA);
+        }
+        if (bond.b < nlocal)
+        {
+            addTo(bond.b, -forceOnA, load.torqueOnB);
         }
     }
+    if (anyBroke)
+    {
+        list_.erase
+        (
+            std::remove_if(list_.begin(), list_.end(), [](const ListedBond& b) { return b.a < 0; }),
+            list_.end()
+        );
+    }
 
+    const int* tag = atom.tag;
     const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
     for (int i = 0; i < nlocal; ++i)
     {
-        loads_.addSumTo(i, atom.f[i], atom.torque[i]);
-        Vec3 force = row(atom.f, i);
-        Vec3 torque = row(atom.torque, i);
-        if (!std::isfinite(force.squaredNorm()) || !std::isfinite(torque.squaredNorm()))
+        Vec3 force = row(f, i);
+        Vec3 moment = row(torque, i);
+        if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
         {
             std::ostringstream msg;
-            msg << "non-finite force on particle " << tag[i] << " at (" << row(atom.x, i).transpose()
+            msg << "non-finite force on particle " << tag[i] << " at (" << row(x, i).transpose()
                 << "): the run has blown up";
             fail(msg.str());
             continue;
         }
         if (hysteretic)
         {
-            applyHystereticDamping(force, row(atom.v, i), damping_.alpha);
-            applyHystereticDamping(torque, row(atom.omega, i), damping_.alpha);
+            applyHystereticDamping(force, row(v, i), damping_.alpha);
+            applyHystereticDamping(moment, row(omega, i), damping_.alpha);
             for (int k = 0; k < 3; ++k)
             {
-                atom.f[i][k] = force[k];
-                atom.torque[i][k] = torque[k];
+                f[i][k] = force[k];
+                torque[i][k] = moment[k];
             }
         }
     }
@@ -337,6 +509,18 @@ double IceBondForces::localBondEnergy() const
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;   // map() is not const
     double energy = 0.0;
+    if (listIsCurrent_)
+    {
+        for (const ListedBond& bond : list_)
+        {
+            if (bond.a < atom.nlocal)
+            {
+                energy += models_[static_cast<int>(bond.state.family)]
+                    .potentialEnergy(bond.state, particle(bond.a), particle(bond.b));
+            }
+        }
+        return energy;
+    }
     for (int i = 0; i < atom.nlocal; ++i)
     {
         const int n = table_.count(i);
