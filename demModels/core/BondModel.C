@@ -18,14 +18,13 @@ double ratio(double load, double limit)
 
 Vec3 rotateIntoTangentPlane(const Vec3& stored, const Vec3& n)
 {
-    const double length = stored.norm();
-    Vec3 projected = stored - stored.dot(n) * n;
-    const double projectedLength = projected.norm();
-    if (projectedLength <= 1e-300)
+    const Vec3 projected = stored - stored.dot(n) * n;
+    const double projected2 = projected.squaredNorm();
+    if (projected2 <= 0.0)
     {
         return Vec3::Zero();
     }
-    return projected * (length / projectedLength);
+    return projected * std::sqrt(stored.squaredNorm() / projected2);
 }
 
 
@@ -44,6 +43,7 @@ BondStiffness BondStiffness::of
     k.inertia = M_PI * rb2 * rb2 / 4.0;
     k.polarInertia = 2.0 * k.inertia;
     k.beamLength = radiusA + radiusB;
+    k.armFractionA = radiusA / k.beamLength;
     // Both particles carry the family's modulus, so E_eq = (r_a + r_b)/(r_a/E + r_b/E) = E.
     k.youngsModulus = family.youngsModulus;
     k.shearModulus = k.youngsModulus / (2.0 * (1.0 + family.poissonsRatio));
@@ -86,6 +86,38 @@ BondState BondModel::create
         state.shearStrength = family_.shearStrength;
     }
     return state;
+}
+
+
+bool BondModel::surelyIntact
+(
+    const BondState& state,
+    const BondStiffness& k,
+    double normalForce,
+    double shearForce2,
+    double twistTorque2,
+    double bendingTorque2
+) const
+{
+    // Below this fraction of a limit, round-off cannot make the exact ratio reach 1.
+    constexpr double margin = 0.99;
+    auto square = [](double x) { return x * x; };
+    const double sigmaT = margin * state.tensileStrength;
+    const double tau = margin * state.shearStrength;
+    if (family_.criterion == BreakageCriterion::separate)
+    {
+        return normalForce < sigmaT * k.area
+            && shearForce2 < square(tau * k.area)
+            && twistTorque2 < square(family_.twistStrengthFactor * tau * k.area15)
+            && bendingTorque2 < square(family_.bendingStrengthFactor * sigmaT * k.area15);
+    }
+    // Combined: sigma + bending stress < sigma_t, and (shear + twist stress)^2,
+    // which is at most twice the sum of their squares, < tau^2.
+    const double tensionReserve = sigmaT - normalForce / k.area;
+    return tensionReserve > 0.0
+        && bendingTorque2 * square(k.bondRadius / k.inertia) < square(tensionReserve)
+        && 2.0 * (shearForce2 / square(k.area) + twistTorque2 * square(k.bondRadius / k.polarInertia))
+           < square(tau);
 }
 
 
@@ -173,11 +205,13 @@ BondLoad BondModel::evaluate
 
     const Vec3 separation = b.position - a.position;
     const double length = separation.norm();
-    const Vec3 n = separation / length;
+    const Vec3 n = separation * (1.0 / length);
+    load.length = length;
+    load.direction = n;
 
     // Lever arms split the actual distance in the ratio of the radii, so that
     // the shear force's torques balance its moment and angular momentum is exact.
-    const double armA = length * a.radius / (a.radius + b.radius);
+    const double armA = length * k.armFractionA;
     const double armB = length - armA;
     load.centre = a.position + armA * n;
 
@@ -201,13 +235,16 @@ BondLoad BondModel::evaluate
     const Vec3 twistTorque = -k.twist * state.twistAngle * n;
     const Vec3 bendingTorque = -k.bending * state.bendingAngle;
 
-    load.broke = breakage
-    (
-        state, k, normalForce, shearForce.norm(), twistTorque.norm(), bendingTorque.norm()
-    );
-    if (load.broke != BreakMode::none)
+    const double shear2 = shearForce.squaredNorm();
+    const double twist2 = twistTorque.squaredNorm();
+    const double bending2 = bendingTorque.squaredNorm();
+    if (!family_.unbreakable && !surelyIntact(state, k, normalForce, shear2, twist2, bending2))
     {
-        return load;
+        load.broke = breakage(state, k, normalForce, std::sqrt(shear2), std::sqrt(twist2), std::sqrt(bending2));
+        if (load.broke != BreakMode::none)
+        {
+            return load;
+        }
     }
 
     if (damping_.model == DampingModel::viscous && damping_.dampingRatio > 0.0)

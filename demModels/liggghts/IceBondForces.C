@@ -191,8 +191,13 @@ void IceBondForces::syncTable()
         return;
     }
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
-    for (const ListedBond& bond : list_)
+    for (std::size_t k = 0; k < list_.size(); ++k)
     {
+        const ListedBond& bond = list_[k];
+        if (!intact_[k])
+        {
+            continue;   // already gone from the table
+        }
         for (const auto& [own, other, local] :
             {std::tuple(bond.state.tagA, bond.state.tagB, bond.a), std::tuple(bond.state.tagB, bond.state.tagA, bond.b)})
         {
@@ -260,8 +265,51 @@ void IceBondForces::rebuildList()
     }
     std::sort(list_.begin(), list_.end(), [](const ListedBond& x, const ListedBond& y)
     {
-        return std::tie(x.state.tagA, x.state.tagB) < std::tie(y.state.tagA, y.state.tagB);
+        return std::tie(x.a, x.b) < std::tie(y.a, y.b);
     });
+    intact_.assign(list_.size(), 1);
+    pairLoads_.resize(list_.size());
+
+    // Each local atom's bonds, by partner tag.
+    firstOfAtom_.assign(nlocal + 1, 0);
+    for (const ListedBond& bond : list_)
+    {
+        for (int end : {bond.a, bond.b})
+        {
+            if (end < nlocal)
+            {
+                ++firstOfAtom_[end + 1];
+            }
+        }
+    }
+    for (int i = 0; i < nlocal; ++i)
+    {
+        firstOfAtom_[i + 1] += firstOfAtom_[i];
+    }
+    atomBonds_.resize(firstOfAtom_[nlocal]);
+    std::vector<int> next(firstOfAtom_.begin(), firstOfAtom_.end() - 1);
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        const ListedBond& bond = list_[k];
+        if (bond.a < nlocal)
+        {
+            atomBonds_[next[bond.a]++] = 2 * static_cast<int>(k);
+        }
+        if (bond.b < nlocal)
+        {
+            atomBonds_[next[bond.b]++] = 2 * static_cast<int>(k) + 1;
+        }
+    }
+    auto partnerTag = [&](int entry)
+    {
+        const BondState& s = list_[entry / 2].state;
+        return entry % 2 ? s.tagA : s.tagB;
+    };
+    for (int i = 0; i < nlocal; ++i)
+    {
+        std::sort(atomBonds_.begin() + firstOfAtom_[i], atomBonds_.begin() + firstOfAtom_[i + 1],
+            [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
+    }
     listIsCurrent_ = true;
     listedLocal_ = nlocal;
     listedGhost_ = atom.nghost;
@@ -305,13 +353,17 @@ std::vector<BondState> IceBondForces::localBondStates() const
     }
     const int nlocal = lmp_.engine().atom->nlocal;
     std::vector<BondState> states;
-    for (const ListedBond& bond : list_)
+    for (std::size_t k = 0; k < list_.size(); ++k)
     {
-        if (bond.a < nlocal)
+        if (intact_[k] && list_[k].a < nlocal)
         {
-            states.push_back(bond.state);
+            states.push_back(list_[k].state);
         }
     }
+    std::sort(states.begin(), states.end(), [](const BondState& x, const BondState& y)
+    {
+        return std::tie(x.tagA, x.tagB) < std::tie(y.tagA, y.tagB);
+    });
     return states;
 }
 
@@ -398,18 +450,14 @@ void IceBondForces::compute()
         p.mass = rmass[i];
         return p;
     };
-    auto addTo = [&](int i, const Vec3& force, const Vec3& moment)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            f[i][k] += force[k];
-            torque[i][k] += moment[k];
-        }
-    };
 
-    bool anyBroke = false;
-    for (ListedBond& bond : list_)
+    for (std::size_t k = 0; k < list_.size(); ++k)
     {
+        if (!intact_[k])
+        {
+            continue;
+        }
+        ListedBond& bond = list_[k];
         BondState& state = bond.state;
         const ParticleState pa = particle(bond.a);
         const ParticleState pb = particle(bond.b);
@@ -427,41 +475,48 @@ void IceBondForces::compute()
             {
                 removeFromTable(bond.b, state.tagA);
             }
-            bond.a = -1;
-            anyBroke = true;
+            intact_[k] = 0;
             continue;
         }
 
-        Vec3 forceOnA = load.forceOnA;
-        const Vec3 separation = pb.position - pa.position;
-        const double overlap = pa.radius + pb.radius - separation.norm();
+        PairLoad& out = pairLoads_[k];
+        out.forceOnA = load.forceOnA;
+        const double overlap = pa.radius + pb.radius - load.length;
         if (overlap > 0.0)
         {
             // Cancel the contact's normal spring: a bonded pair has the bond only.
-            forceOnA += contactNormalStiffness_ * overlap * separation.normalized();
+            out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
         }
-        if (bond.a < nlocal)
-        {
-            addTo(bond.a, forceOnA, load.torqueOnA);
-        }
-        if (bond.b < nlocal)
-        {
-            addTo(bond.b, -forceOnA, load.torqueOnB);
-        }
-    }
-    if (anyBroke)
-    {
-        list_.erase
-        (
-            std::remove_if(list_.begin(), list_.end(), [](const ListedBond& b) { return b.a < 0; }),
-            list_.end()
-        );
+        out.torqueOnA = load.torqueOnA;
+        out.torqueOnB = load.torqueOnB;
     }
 
     const int* tag = atom.tag;
     const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
     for (int i = 0; i < nlocal; ++i)
     {
+        double* fi = f[i];
+        double* ti = torque[i];
+        for (int e = firstOfAtom_[i]; e < firstOfAtom_[i + 1]; ++e)
+        {
+            const int entry = atomBonds_[e];
+            const int k = entry / 2;
+            if (!intact_[k])
+            {
+                continue;
+            }
+            // Branch-free: whether the atom is the bond's a or b is random.
+            const PairLoad& load = pairLoads_[k];
+            const int isB = entry % 2;
+            const double sign = 1 - 2 * isB;
+            const Vec3& moment = isB ? load.torqueOnB : load.torqueOnA;
+            for (int c = 0; c < 3; ++c)
+            {
+                fi[c] += sign * load.forceOnA[c];
+                ti[c] += moment[c];
+            }
+        }
+
         Vec3 force = row(f, i);
         Vec3 moment = row(torque, i);
         if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
@@ -476,10 +531,10 @@ void IceBondForces::compute()
         {
             applyHystereticDamping(force, row(v, i), damping_.alpha);
             applyHystereticDamping(moment, row(omega, i), damping_.alpha);
-            for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c)
             {
-                f[i][k] = force[k];
-                torque[i][k] = moment[k];
+                fi[c] = force[c];
+                ti[c] = moment[c];
             }
         }
     }
@@ -511,9 +566,10 @@ double IceBondForces::localBondEnergy() const
     double energy = 0.0;
     if (listIsCurrent_)
     {
-        for (const ListedBond& bond : list_)
+        for (std::size_t k = 0; k < list_.size(); ++k)
         {
-            if (bond.a < atom.nlocal)
+            const ListedBond& bond = list_[k];
+            if (intact_[k] && bond.a < atom.nlocal)
             {
                 energy += models_[static_cast<int>(bond.state.family)]
                     .potentialEnergy(bond.state, particle(bond.a), particle(bond.b));
