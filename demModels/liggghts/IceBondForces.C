@@ -190,35 +190,35 @@ void IceBondForces::syncTable()
     {
         return;
     }
-    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int nlocal = lmp_.engine().atom->nlocal;
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
-        const ListedBond& bond = list_[k];
         if (!intact_[k])
         {
             continue;   // already gone from the table
         }
-        for (const auto& [own, other, local] :
-            {std::tuple(bond.state.tagA, bond.state.tagB, bond.a), std::tuple(bond.state.tagB, bond.state.tagA, bond.b)})
+        const BondState& state = list_[k].state;
+        for (const auto& [own, other, atom] :
+            {std::tuple(state.tagA, state.tagB, atomOf_[list_[k].a]),
+             std::tuple(state.tagB, state.tagA, atomOf_[list_[k].b])})
         {
-            if (local < atom.nlocal)
+            if (atom < nlocal)
             {
-                table_.write(local, table_.find(local, other), bond.state, own);
+                table_.write(atom, table_.find(atom, other), state, own);
             }
         }
     }
     listIsCurrent_ = false;
 }
 
-
 void IceBondForces::rebuildList()
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     const int nlocal = atom.nlocal;
     const int* tag = atom.tag;
-    std::map<std::tuple<int, double, double>, int> stiffnessIndex;
+
+    // The bonds, each once, with LIGGGHTS' indices of their atoms for now.
     list_.clear();
-    stiffnesses_.clear();
     for (int i = 0; i < nlocal; ++i)
     {
         const int n = table_.count(i);
@@ -244,24 +244,79 @@ void IceBondForces::rebuildList()
             const bool iIsA = tag[i] < partnerTag;
             bond.a = iIsA ? i : j;
             bond.b = iIsA ? j : i;
-            const int family = static_cast<int>(bond.state.family);
-            const auto key = std::make_tuple(family, atom.radius[bond.a], atom.radius[bond.b]);
-            const auto known = stiffnessIndex.find(key);
-            if (known != stiffnessIndex.end())
-            {
-                bond.stiffness = known->second;
-            }
-            else
-            {
-                bond.stiffness = static_cast<int>(stiffnesses_.size());
-                stiffnessIndex.emplace(key, bond.stiffness);
-                stiffnesses_.push_back
-                (
-                    BondStiffness::of(models_[family].parameters(), atom.radius[bond.a], atom.radius[bond.b])
-                );
-            }
             list_.push_back(bond);
         }
+    }
+
+    // The local atoms and the bonded ghosts, in cells of a bond's length
+    // ordered along x, then y, then z.
+    std::vector<int> entryOf(nlocal + atom.nghost, -1);
+    atomOf_.clear();
+    for (int i = 0; i < nlocal; ++i)
+    {
+        entryOf[i] = 0;
+        atomOf_.push_back(i);
+    }
+    double cell = 0.0;
+    for (const ListedBond& bond : list_)
+    {
+        for (int end : {bond.a, bond.b})
+        {
+            if (entryOf[end] < 0)
+            {
+                entryOf[end] = 0;
+                atomOf_.push_back(end);
+            }
+        }
+        cell = std::max(cell, atom.radius[bond.a] + atom.radius[bond.b]);
+    }
+    if (cell > 0.0)
+    {
+        auto key = [&](int i)
+        {
+            return std::make_tuple
+            (
+                std::floor(atom.x[i][0] / cell), std::floor(atom.x[i][1] / cell), std::floor(atom.x[i][2] / cell), i
+            );
+        };
+        std::vector<std::tuple<double, double, double, int>> keys;
+        keys.reserve(atomOf_.size());
+        for (int i : atomOf_)
+        {
+            keys.push_back(key(i));
+        }
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t e = 0; e < keys.size(); ++e)
+        {
+            atomOf_[e] = std::get<3>(keys[e]);
+        }
+    }
+    particles_.resize(atomOf_.size());
+    for (std::size_t e = 0; e < atomOf_.size(); ++e)
+    {
+        entryOf[atomOf_[e]] = static_cast<int>(e);
+        particles_[e].radius = atom.radius[atomOf_[e]];
+        particles_[e].mass = atom.rmass[atomOf_[e]];
+    }
+
+    std::map<std::tuple<int, double, double>, int> stiffnessIndex;
+    stiffnesses_.clear();
+    for (ListedBond& bond : list_)
+    {
+        bond.a = entryOf[bond.a];
+        bond.b = entryOf[bond.b];
+        const int family = static_cast<int>(bond.state.family);
+        const double radiusA = particles_[bond.a].radius;
+        const double radiusB = particles_[bond.b].radius;
+        const auto known = stiffnessIndex.find({family, radiusA, radiusB});
+        if (known != stiffnessIndex.end())
+        {
+            bond.stiffness = known->second;
+            continue;
+        }
+        bond.stiffness = static_cast<int>(stiffnesses_.size());
+        stiffnessIndex.emplace(std::make_tuple(family, radiusA, radiusB), bond.stiffness);
+        stiffnesses_.push_back(BondStiffness::of(models_[family].parameters(), radiusA, radiusB));
     }
     std::sort(list_.begin(), list_.end(), [](const ListedBond& x, const ListedBond& y)
     {
@@ -271,31 +326,32 @@ void IceBondForces::rebuildList()
     pairLoads_.resize(list_.size());
 
     // Each local atom's bonds, by partner tag.
-    firstOfAtom_.assign(nlocal + 1, 0);
+    const int entries = static_cast<int>(atomOf_.size());
+    firstOfAtom_.assign(entries + 1, 0);
     for (const ListedBond& bond : list_)
     {
         for (int end : {bond.a, bond.b})
         {
-            if (end < nlocal)
+            if (atomOf_[end] < nlocal)
             {
                 ++firstOfAtom_[end + 1];
             }
         }
     }
-    for (int i = 0; i < nlocal; ++i)
+    for (int e = 0; e < entries; ++e)
     {
-        firstOfAtom_[i + 1] += firstOfAtom_[i];
+        firstOfAtom_[e + 1] += firstOfAtom_[e];
     }
-    atomBonds_.resize(firstOfAtom_[nlocal]);
+    atomBonds_.resize(firstOfAtom_[entries]);
     std::vector<int> next(firstOfAtom_.begin(), firstOfAtom_.end() - 1);
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
         const ListedBond& bond = list_[k];
-        if (bond.a < nlocal)
+        if (atomOf_[bond.a] < nlocal)
         {
             atomBonds_[next[bond.a]++] = 2 * static_cast<int>(k);
         }
-        if (bond.b < nlocal)
+        if (atomOf_[bond.b] < nlocal)
         {
             atomBonds_[next[bond.b]++] = 2 * static_cast<int>(k) + 1;
         }
@@ -305,16 +361,15 @@ void IceBondForces::rebuildList()
         const BondState& s = list_[entry / 2].state;
         return entry % 2 ? s.tagA : s.tagB;
     };
-    for (int i = 0; i < nlocal; ++i)
+    for (int e = 0; e < entries; ++e)
     {
-        std::sort(atomBonds_.begin() + firstOfAtom_[i], atomBonds_.begin() + firstOfAtom_[i + 1],
+        std::sort(atomBonds_.begin() + firstOfAtom_[e], atomBonds_.begin() + firstOfAtom_[e + 1],
             [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
     }
     listIsCurrent_ = true;
     listedLocal_ = nlocal;
     listedGhost_ = atom.nghost;
 }
-
 
 void IceBondForces::removeFromTable(int atom, long partnerTag)
 {
@@ -355,7 +410,7 @@ std::vector<BondState> IceBondForces::localBondStates() const
     std::vector<BondState> states;
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
-        if (intact_[k] && list_[k].a < nlocal)
+        if (intact_[k] && atomOf_[list_[k].a] < nlocal)
         {
             states.push_back(list_[k].state);
         }
@@ -438,18 +493,19 @@ void IceBondForces::compute()
     double** const omega = atom.omega;
     double** const f = atom.f;
     double** const torque = atom.torque;
-    const double* const radius = atom.radius;
-    const double* const rmass = atom.rmass;
-    auto particle = [&](int i)
+
+    const int entries = static_cast<int>(atomOf_.size());
+    for (int e = 0; e < entries; ++e)
     {
-        ParticleState p;
-        p.position = Vec3(x[i][0], x[i][1], x[i][2]);
-        p.velocity = Vec3(v[i][0], v[i][1], v[i][2]);
-        p.angularVelocity = Vec3(omega[i][0], omega[i][1], omega[i][2]);
-        p.radius = radius[i];
-        p.mass = rmass[i];
-        return p;
-    };
+        const int i = atomOf_[e];
+        ParticleState& p = particles_[e];
+        for (int c = 0; c < 3; ++c)
+        {
+            p.position[c] = x[i][c];
+            p.velocity[c] = v[i][c];
+            p.angularVelocity[c] = omega[i][c];
+        }
+    }
 
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
@@ -459,21 +515,23 @@ void IceBondForces::compute()
         }
         ListedBond& bond = list_[k];
         BondState& state = bond.state;
-        const ParticleState pa = particle(bond.a);
-        const ParticleState pb = particle(bond.b);
+        const ParticleState& pa = particles_[bond.a];
+        const ParticleState& pb = particles_[bond.b];
         const BondLoad load =
             models_[static_cast<int>(state.family)].evaluate(state, stiffnesses_[bond.stiffness], pa, pb, dt);
 
         if (load.broke != BreakMode::none)
         {
-            if (bond.a < nlocal)
+            const int a = atomOf_[bond.a];
+            const int b = atomOf_[bond.b];
+            if (a < nlocal)
             {
                 breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
-                removeFromTable(bond.a, state.tagB);
+                removeFromTable(a, state.tagB);
             }
-            if (bond.b < nlocal)
+            if (b < nlocal)
             {
-                removeFromTable(bond.b, state.tagA);
+                removeFromTable(b, state.tagA);
             }
             intact_[k] = 0;
             continue;
@@ -493,13 +551,18 @@ void IceBondForces::compute()
 
     const int* tag = atom.tag;
     const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
-    for (int i = 0; i < nlocal; ++i)
+    for (int e = 0; e < entries; ++e)
     {
-        double* fi = f[i];
-        double* ti = torque[i];
-        for (int e = firstOfAtom_[i]; e < firstOfAtom_[i + 1]; ++e)
+        const int i = atomOf_[e];
+        if (i >= nlocal)
         {
-            const int entry = atomBonds_[e];
+            continue;
+        }
+        Vec3 force = row(f, i);
+        Vec3 moment = row(torque, i);
+        for (int n = firstOfAtom_[e]; n < firstOfAtom_[e + 1]; ++n)
+        {
+            const int entry = atomBonds_[n];
             const int k = entry / 2;
             if (!intact_[k])
             {
@@ -509,37 +572,33 @@ void IceBondForces::compute()
             const PairLoad& load = pairLoads_[k];
             const int isB = entry % 2;
             const double sign = 1 - 2 * isB;
-            const Vec3& moment = isB ? load.torqueOnB : load.torqueOnA;
+            const Vec3& bondMoment = isB ? load.torqueOnB : load.torqueOnA;
             for (int c = 0; c < 3; ++c)
             {
-                fi[c] += sign * load.forceOnA[c];
-                ti[c] += moment[c];
+                force[c] += sign * load.forceOnA[c];
+                moment[c] += bondMoment[c];
             }
         }
 
-        Vec3 force = row(f, i);
-        Vec3 moment = row(torque, i);
         if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
         {
             std::ostringstream msg;
             msg << "non-finite force on particle " << tag[i] << " at (" << row(x, i).transpose()
                 << "): the run has blown up";
             fail(msg.str());
-            continue;
         }
-        if (hysteretic)
+        else if (hysteretic)
         {
-            applyHystereticDamping(force, row(v, i), damping_.alpha);
-            applyHystereticDamping(moment, row(omega, i), damping_.alpha);
-            for (int c = 0; c < 3; ++c)
-            {
-                fi[c] = force[c];
-                ti[c] = moment[c];
-            }
+            applyHystereticDamping(force, particles_[e].velocity, damping_.alpha);
+            applyHystereticDamping(moment, particles_[e].angularVelocity, damping_.alpha);
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+            f[i][c] = force[c];
+            torque[i][c] = moment[c];
         }
     }
 }
-
 
 std::vector<BreakEvent> IceBondForces::takeLocalBreakEvents()
 {
@@ -569,10 +628,11 @@ double IceBondForces::localBondEnergy() const
         for (std::size_t k = 0; k < list_.size(); ++k)
         {
             const ListedBond& bond = list_[k];
-            if (intact_[k] && bond.a < atom.nlocal)
+            const int a = atomOf_[bond.a];
+            if (intact_[k] && a < atom.nlocal)
             {
                 energy += models_[static_cast<int>(bond.state.family)]
-                    .potentialEnergy(bond.state, particle(bond.a), particle(bond.b));
+                    .potentialEnergy(bond.state, particle(a), particle(atomOf_[bond.b]));
             }
         }
         return energy;
