@@ -507,6 +507,53 @@ void IceBondForces::compute()
         }
     }
 
+    // Runs of up to batchSize intact bonds of one family, evaluated together.
+    constexpr int batchSize = BondModel::batchSize;
+    std::size_t batch[batchSize];
+    BondState* states[batchSize];
+    const BondStiffness* stiffnesses[batchSize];
+    const ParticleState* as[batchSize];
+    const ParticleState* bs[batchSize];
+    BondLoad loads[batchSize];
+    int inBatch = 0;
+    auto evaluateBatch = [&]()
+    {
+        const ListedBond& first = list_[batch[0]];
+        models_[static_cast<int>(first.state.family)].evaluateBatch(inBatch, states, stiffnesses, as, bs, dt, loads);
+        for (int l = 0; l < inBatch; ++l)
+        {
+            const std::size_t k = batch[l];
+            const BondState& state = list_[k].state;
+            const BondLoad& load = loads[l];
+            if (load.broke != BreakMode::none)
+            {
+                const int a = atomOf_[list_[k].a];
+                const int b = atomOf_[list_[k].b];
+                if (a < nlocal)
+                {
+                    breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
+                    removeFromTable(a, state.tagB);
+                }
+                if (b < nlocal)
+                {
+                    removeFromTable(b, state.tagA);
+                }
+                intact_[k] = 0;
+                continue;
+            }
+            PairLoad& out = pairLoads_[k];
+            out.forceOnA = load.forceOnA;
+            const double overlap = as[l]->radius + bs[l]->radius - load.length;
+            if (overlap > 0.0)
+            {
+                // Cancel the contact's normal spring: a bonded pair has the bond only.
+                out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
+            }
+            out.torqueOnA = load.torqueOnA;
+            out.torqueOnB = load.torqueOnB;
+        }
+        inBatch = 0;
+    };
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
         if (!intact_[k])
@@ -514,39 +561,23 @@ void IceBondForces::compute()
             continue;
         }
         ListedBond& bond = list_[k];
-        BondState& state = bond.state;
-        const ParticleState& pa = particles_[bond.a];
-        const ParticleState& pb = particles_[bond.b];
-        const BondLoad load =
-            models_[static_cast<int>(state.family)].evaluate(state, stiffnesses_[bond.stiffness], pa, pb, dt);
-
-        if (load.broke != BreakMode::none)
+        if (inBatch > 0 && bond.state.family != list_[batch[0]].state.family)
         {
-            const int a = atomOf_[bond.a];
-            const int b = atomOf_[bond.b];
-            if (a < nlocal)
-            {
-                breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
-                removeFromTable(a, state.tagB);
-            }
-            if (b < nlocal)
-            {
-                removeFromTable(b, state.tagA);
-            }
-            intact_[k] = 0;
-            continue;
+            evaluateBatch();
         }
-
-        PairLoad& out = pairLoads_[k];
-        out.forceOnA = load.forceOnA;
-        const double overlap = pa.radius + pb.radius - load.length;
-        if (overlap > 0.0)
+        batch[inBatch] = k;
+        states[inBatch] = &bond.state;
+        stiffnesses[inBatch] = &stiffnesses_[bond.stiffness];
+        as[inBatch] = &particles_[bond.a];
+        bs[inBatch] = &particles_[bond.b];
+        if (++inBatch == batchSize)
         {
-            // Cancel the contact's normal spring: a bonded pair has the bond only.
-            out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
+            evaluateBatch();
         }
-        out.torqueOnA = load.torqueOnA;
-        out.torqueOnB = load.torqueOnB;
+    }
+    if (inBatch > 0)
+    {
+        evaluateBatch();
     }
 
     const int* tag = atom.tag;
