@@ -248,8 +248,8 @@ void IceBondForces::rebuildList()
         }
     }
 
-    // The local atoms and the bonded ghosts, in cells of a bond's length
-    // ordered along x, then y, then z.
+    // The local atoms in LIGGGHTS' order, which is spatial (it sorts atoms
+    // in bins at each run's set-up and every 1000 steps), then the bonded ghosts.
     std::vector<int> entryOf(nlocal + atom.nghost, -1);
     atomOf_.clear();
     for (int i = 0; i < nlocal; ++i)
@@ -257,7 +257,6 @@ void IceBondForces::rebuildList()
         entryOf[i] = 0;
         atomOf_.push_back(i);
     }
-    double cell = 0.0;
     for (const ListedBond& bond : list_)
     {
         for (int end : {bond.a, bond.b})
@@ -267,28 +266,6 @@ void IceBondForces::rebuildList()
                 entryOf[end] = 0;
                 atomOf_.push_back(end);
             }
-        }
-        cell = std::max(cell, atom.radius[bond.a] + atom.radius[bond.b]);
-    }
-    if (cell > 0.0)
-    {
-        auto key = [&](int i)
-        {
-            return std::make_tuple
-            (
-                std::floor(atom.x[i][0] / cell), std::floor(atom.x[i][1] / cell), std::floor(atom.x[i][2] / cell), i
-            );
-        };
-        std::vector<std::tuple<double, double, double, int>> keys;
-        keys.reserve(atomOf_.size());
-        for (int i : atomOf_)
-        {
-            keys.push_back(key(i));
-        }
-        std::sort(keys.begin(), keys.end());
-        for (std::size_t e = 0; e < keys.size(); ++e)
-        {
-            atomOf_[e] = std::get<3>(keys[e]);
         }
     }
     particles_.resize(atomOf_.size());
@@ -365,6 +342,16 @@ void IceBondForces::rebuildList()
     {
         std::sort(atomBonds_.begin() + firstOfAtom_[e], atomBonds_.begin() + firstOfAtom_[e + 1],
             [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
+    }
+    lastA_.resize(entries);
+    for (int e = 0, last = 0; e < entries; ++e)
+    {
+        last = std::max(last, e);
+        for (int n = firstOfAtom_[e]; n < firstOfAtom_[e + 1]; ++n)
+        {
+            last = std::max(last, list_[atomBonds_[n] / 2].a);
+        }
+        lastA_[e] = last;
     }
     listIsCurrent_ = true;
     listedLocal_ = nlocal;
@@ -476,8 +463,7 @@ void IceBondForces::fail(const std::string& what)
 void IceBondForces::compute()
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
-    const int nlocal = atom.nlocal;
-    if (listIsCurrent_ && (nlocal != listedLocal_ || atom.nghost != listedGhost_))
+    if (listIsCurrent_ && (atom.nlocal != listedLocal_ || atom.nghost != listedGhost_))
     {
         fail("LIGGGHTS moved atoms without synchronising the bond table first (internal error)");
         return;
@@ -486,150 +472,175 @@ void IceBondForces::compute()
     {
         rebuildList();
     }
-    const double dt = lmp_.timeStep();
-    const double time = lmp_.time();
-    double** const x = atom.x;
-    double** const v = atom.v;
-    double** const omega = atom.omega;
-    double** const f = atom.f;
-    double** const torque = atom.torque;
 
+    // One pass in spatial order: copy atoms in just ahead of the bonds that
+    // need them, and sum each atom's loads soon after its last bond is
+    // stepped, while both are still in cache.
     const int entries = static_cast<int>(atomOf_.size());
-    for (int e = 0; e < entries; ++e)
+    int gathered = 0, summed = 0;
+    auto gatherUpTo = [&](int last)
     {
-        const int i = atomOf_[e];
-        ParticleState& p = particles_[e];
-        for (int c = 0; c < 3; ++c)
+        for (; gathered <= last; ++gathered)
         {
-            p.position[c] = x[i][c];
-            p.velocity[c] = v[i][c];
-            p.angularVelocity[c] = omega[i][c];
+            gather(gathered);
         }
-    }
-
-    // Runs of up to batchSize intact bonds of one family, evaluated together.
-    constexpr int batchSize = BondModel::batchSize;
-    std::size_t batch[batchSize];
-    BondState* states[batchSize];
-    const BondStiffness* stiffnesses[batchSize];
-    const ParticleState* as[batchSize];
-    const ParticleState* bs[batchSize];
-    BondLoad loads[batchSize];
-    int inBatch = 0;
-    auto evaluateBatch = [&]()
-    {
-        const ListedBond& first = list_[batch[0]];
-        models_[static_cast<int>(first.state.family)].evaluateBatch(inBatch, states, stiffnesses, as, bs, dt, loads);
-        for (int l = 0; l < inBatch; ++l)
-        {
-            const std::size_t k = batch[l];
-            const BondState& state = list_[k].state;
-            const BondLoad& load = loads[l];
-            if (load.broke != BreakMode::none)
-            {
-                const int a = atomOf_[list_[k].a];
-                const int b = atomOf_[list_[k].b];
-                if (a < nlocal)
-                {
-                    breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
-                    removeFromTable(a, state.tagB);
-                }
-                if (b < nlocal)
-                {
-                    removeFromTable(b, state.tagA);
-                }
-                intact_[k] = 0;
-                continue;
-            }
-            PairLoad& out = pairLoads_[k];
-            out.forceOnA = load.forceOnA;
-            const double overlap = as[l]->radius + bs[l]->radius - load.length;
-            if (overlap > 0.0)
-            {
-                // Cancel the contact's normal spring: a bonded pair has the bond only.
-                out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
-            }
-            out.torqueOnA = load.torqueOnA;
-            out.torqueOnB = load.torqueOnB;
-        }
-        inBatch = 0;
     };
+    auto sumBelow = [&](int firstUnstepped)
+    {
+        for (; summed < entries && lastA_[summed] < firstUnstepped; ++summed)
+        {
+            gatherUpTo(summed);
+            sumLoads(summed);
+        }
+    };
+    constexpr int sumEvery = 64;   // entries of a between sums
+    int steppedBelow = 0;          // every bond with a below this is stepped
+    Batch batch;
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
+        const ListedBond& bond = list_[k];
+        if (bond.a >= steppedBelow + sumEvery)
+        {
+            evaluate(batch);
+            steppedBelow = bond.a;
+            sumBelow(steppedBelow);
+        }
         if (!intact_[k])
         {
             continue;
         }
-        ListedBond& bond = list_[k];
-        if (inBatch > 0 && bond.state.family != list_[batch[0]].state.family)
+        gatherUpTo(std::max(bond.a, bond.b));
+        if (batch.size > 0 && bond.state.family != batch.states[0]->family)
         {
-            evaluateBatch();
+            evaluate(batch);
         }
-        batch[inBatch] = k;
-        states[inBatch] = &bond.state;
-        stiffnesses[inBatch] = &stiffnesses_[bond.stiffness];
-        as[inBatch] = &particles_[bond.a];
-        bs[inBatch] = &particles_[bond.b];
-        if (++inBatch == batchSize)
+        const int l = batch.size++;
+        batch.bonds[l] = k;
+        batch.states[l] = &list_[k].state;
+        batch.stiffnesses[l] = &stiffnesses_[bond.stiffness];
+        batch.a[l] = &particles_[bond.a];
+        batch.b[l] = &particles_[bond.b];
+        if (batch.size == BondModel::batchSize)
         {
-            evaluateBatch();
+            evaluate(batch);
         }
     }
-    if (inBatch > 0)
-    {
-        evaluateBatch();
-    }
+    evaluate(batch);
+    sumBelow(entries);
+}
 
-    const int* tag = atom.tag;
-    const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
-    for (int e = 0; e < entries; ++e)
+
+void IceBondForces::gather(int entry)
+{
+    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int i = atomOf_[entry];
+    ParticleState& p = particles_[entry];
+    for (int c = 0; c < 3; ++c)
     {
-        const int i = atomOf_[e];
-        if (i >= nlocal)
+        p.position[c] = atom.x[i][c];
+        p.velocity[c] = atom.v[i][c];
+        p.angularVelocity[c] = atom.omega[i][c];
+    }
+}
+
+
+void IceBondForces::evaluate(Batch& batch)
+{
+    if (batch.size == 0)
+    {
+        return;
+    }
+    const int nlocal = lmp_.engine().atom->nlocal;
+    BondLoad loads[BondModel::batchSize];
+    models_[static_cast<int>(batch.states[0]->family)].evaluateBatch
+    (
+        batch.size, batch.states, batch.stiffnesses, batch.a, batch.b, lmp_.timeStep(), loads
+    );
+    for (int l = 0; l < batch.size; ++l)
+    {
+        const std::size_t k = batch.bonds[l];
+        const BondState& state = list_[k].state;
+        const BondLoad& load = loads[l];
+        if (load.broke != BreakMode::none)
+        {
+            const int a = atomOf_[list_[k].a];
+            const int b = atomOf_[list_[k].b];
+            if (a < nlocal)
+            {
+                breaks_.push_back({lmp_.time(), load.centre, state.tagA, state.tagB, state.family, load.broke});
+                removeFromTable(a, state.tagB);
+            }
+            if (b < nlocal)
+            {
+                removeFromTable(b, state.tagA);
+            }
+            intact_[k] = 0;
+            continue;
+        }
+        PairLoad& out = pairLoads_[k];
+        out.forceOnA = load.forceOnA;
+        const double overlap = batch.a[l]->radius + batch.b[l]->radius - load.length;
+        if (overlap > 0.0)
+        {
+            // Cancel the contact's normal spring: a bonded pair has the bond only.
+            out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
+        }
+        out.torqueOnA = load.torqueOnA;
+        out.torqueOnB = load.torqueOnB;
+    }
+    batch.size = 0;
+}
+
+
+void IceBondForces::sumLoads(int entry)
+{
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int i = atomOf_[entry];
+    if (i >= atom.nlocal)
+    {
+        return;   // a ghost: its owner sums its loads
+    }
+    Vec3 force = row(atom.f, i);
+    Vec3 moment = row(atom.torque, i);
+    for (int n = firstOfAtom_[entry]; n < firstOfAtom_[entry + 1]; ++n)
+    {
+        const int bondEnd = atomBonds_[n];
+        const int k = bondEnd / 2;
+        if (!intact_[k])
         {
             continue;
         }
-        Vec3 force = row(f, i);
-        Vec3 moment = row(torque, i);
-        for (int n = firstOfAtom_[e]; n < firstOfAtom_[e + 1]; ++n)
-        {
-            const int entry = atomBonds_[n];
-            const int k = entry / 2;
-            if (!intact_[k])
-            {
-                continue;
-            }
-            // Branch-free: whether the atom is the bond's a or b is random.
-            const PairLoad& load = pairLoads_[k];
-            const int isB = entry % 2;
-            const double sign = 1 - 2 * isB;
-            const Vec3& bondMoment = isB ? load.torqueOnB : load.torqueOnA;
-            for (int c = 0; c < 3; ++c)
-            {
-                force[c] += sign * load.forceOnA[c];
-                moment[c] += bondMoment[c];
-            }
-        }
-
-        if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
-        {
-            std::ostringstream msg;
-            msg << "non-finite force on particle " << tag[i] << " at (" << row(x, i).transpose()
-                << "): the run has blown up";
-            fail(msg.str());
-        }
-        else if (hysteretic)
-        {
-            applyHystereticDamping(force, particles_[e].velocity, damping_.alpha);
-            applyHystereticDamping(moment, particles_[e].angularVelocity, damping_.alpha);
-        }
+        // Branch-free: whether the atom is the bond's a or b is random.
+        const PairLoad& load = pairLoads_[k];
+        const int isB = bondEnd % 2;
+        const double sign = 1 - 2 * isB;
+        const Vec3& bondMoment = isB ? load.torqueOnB : load.torqueOnA;
         for (int c = 0; c < 3; ++c)
         {
-            f[i][c] = force[c];
-            torque[i][c] = moment[c];
+            force[c] += sign * load.forceOnA[c];
+            moment[c] += bondMoment[c];
         }
     }
+
+    if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
+    {
+        std::ostringstream msg;
+        msg << "non-finite force on particle " << atom.tag[i] << " at (" << row(atom.x, i).transpose()
+            << "): the run has blown up";
+        fail(msg.str());
+    }
+    else if (damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0)
+    {
+        applyHystereticDamping(force, particles_[entry].velocity, damping_.alpha);
+        applyHystereticDamping(moment, particles_[entry].angularVelocity, damping_.alpha);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+        atom.f[i][c] = force[c];
+        atom.torque[i][c] = moment[c];
+    }
 }
+
 
 std::vector<BreakEvent> IceBondForces::takeLocalBreakEvents()
 {
