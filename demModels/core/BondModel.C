@@ -2,6 +2,10 @@
 
 #include <cmath>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 namespace iceDEM
 {
 
@@ -245,7 +249,19 @@ template<int lanes>
 inline Lanes<lanes> squareRoot(const Lanes<lanes>& p)
 {
     Lanes<lanes> r;
-    for (int l = 0; l < lanes; ++l) r.v[l] = std::sqrt(p.v[l]);
+    int l = 0;
+#ifdef __SSE2__
+    // Two lanes per instruction, same bits: std::sqrt would keep the compiler
+    // from pairing them, as it must set errno for a negative argument.
+    for (; l + 2 <= lanes; l += 2)
+    {
+        _mm_storeu_pd(r.v + l, _mm_sqrt_pd(_mm_loadu_pd(p.v + l)));
+    }
+#endif
+    for (; l < lanes; ++l)
+    {
+        r.v[l] = std::sqrt(p.v[l]);
+    }
     return r;
 }
 
