@@ -35,7 +35,6 @@ BondStiffness BondStiffness::of
     k.inertia = M_PI * rb2 * rb2 / 4.0;
     k.polarInertia = 2.0 * k.inertia;
     k.beamLength = radiusA + radiusB;
-    k.armFractionA = radiusA / k.beamLength;
     // Both particles carry the family's modulus, so E_eq = (r_a + r_b)/(r_a/E + r_b/E) = E.
     k.youngsModulus = family.youngsModulus;
     k.shearModulus = k.youngsModulus / (2.0 * (1.0 + family.poissonsRatio));
@@ -312,13 +311,13 @@ inline Vec3 get(const Lanes3<lanes>& p, int l)
 template<int lanes>
 inline Lanes3<lanes> rotateEachIntoTangentPlane(const Lanes3<lanes>& stored, const Lanes3<lanes>& n)
 {
+    const Lanes<lanes> length = squareRoot(squaredNorm(stored));
     const Lanes3<lanes> projected = stored - dot(stored, n) * n;
-    const Lanes<lanes> projected2 = squaredNorm(projected);
-    const Lanes<lanes> scale = squareRoot(squaredNorm(stored) / projected2);
-    Lanes3<lanes> rotated = projected * scale;
+    const Lanes<lanes> projectedLength = squareRoot(squaredNorm(projected));
+    Lanes3<lanes> rotated = projected * (length / projectedLength);
     for (int l = 0; l < lanes; ++l)
     {
-        if (!(projected2.v[l] > 0.0))
+        if (projectedLength.v[l] <= 1e-300)
         {
             rotated.x.v[l] = rotated.y.v[l] = rotated.z.v[l] = 0.0;
         }
@@ -352,7 +351,7 @@ void BondModel::evaluateLanes
 {
     // Unused lanes repeat the first bond; their results are dropped.
     Lanes3<lanes> positionA, positionB, velocityA, velocityB, spinA, spinB, shearDisplacement, bendingAngle;
-    Lanes<lanes> restLength, twistAngle, armFractionA, kNormal, kShear, kTwist, kBending;
+    Lanes<lanes> radiusA, radiusB, restLength, twistAngle, kNormal, kShear, kTwist, kBending;
     for (int l = 0; l < lanes; ++l)
     {
         const int bond = l < count ? l : 0;
@@ -370,7 +369,8 @@ void BondModel::evaluateLanes
         set(bendingAngle, l, s.bendingAngle);
         restLength.v[l] = s.restLength;
         twistAngle.v[l] = s.twistAngle;
-        armFractionA.v[l] = k.armFractionA;
+        radiusA.v[l] = pa.radius;
+        radiusB.v[l] = pb.radius;
         kNormal.v[l] = k.normal;
         kShear.v[l] = k.shear;
         kTwist.v[l] = k.twist;
@@ -380,11 +380,11 @@ void BondModel::evaluateLanes
 
     const Lanes3<lanes> separation = positionB - positionA;
     const Lanes<lanes> length = squareRoot(squaredNorm(separation));
-    const Lanes3<lanes> n = separation * (broadcast<lanes>(1.0) / length);
+    const Lanes3<lanes> n = {separation.x / length, separation.y / length, separation.z / length};
 
     // Lever arms split the actual distance in the ratio of the radii, so that
     // the shear force's torques balance its moment and angular momentum is exact.
-    const Lanes<lanes> armA = length * armFractionA;
+    const Lanes<lanes> armA = length * radiusA / (radiusA + radiusB);
     const Lanes<lanes> armB = length - armA;
     const Lanes3<lanes> centre = positionA + armA * n;
 
