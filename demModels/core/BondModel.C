@@ -80,7 +80,7 @@ BondState BondModel::create
 }
 
 
-bool BondModel::surelyIntact
+inline bool BondModel::surelyIntact
 (
     const BondState& state,
     const BondStiffness& k,
