@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <tuple>
 
@@ -39,29 +40,29 @@ Vec3 row(double** a, int i)
 class BondTableSync : public LAMMPS_NS::Fix
 {
 public:
-    BondTableSync(LAMMPS_NS::LAMMPS* engine, char** args, IceBondForces& owner)
+    BondTableSync(LAMMPS_NS::LAMMPS* engine, char** args, std::shared_ptr<IceBondForces*> target)
     :
         Fix(engine, 3, args),
-        owner_(&owner)
+        target_(std::move(target))
     {}
+
+    void retarget(std::shared_ptr<IceBondForces*> target) { target_ = std::move(target); }
 
     int setmask() override { return LAMMPS_NS::FixConst::PRE_EXCHANGE; }
     void setup_pre_exchange() override { sync(); }
     void pre_exchange() override { sync(); }
 
-    //- The owner is gone: nothing to synchronise any more.
-    void detach() { owner_ = nullptr; }
-
 private:
     void sync()
     {
-        if (owner_)
+        if (*target_)
         {
-            owner_->syncTable();
+            (*target_)->syncTable();
         }
     }
 
-    IceBondForces* owner_;
+    // Null once the IceBondForces is destroyed (LIGGGHTS may outlive it).
+    std::shared_ptr<IceBondForces*> target_;
 };
 
 
@@ -86,15 +87,9 @@ IceBondForces::IceBondForces
 
 IceBondForces::~IceBondForces()
 {
-    LAMMPS_NS::Modify& modify = *lmp_.engine().modify;
-    const std::string syncId = std::string(BondTable::fixId) + "Sync";
-    const int index = modify.find_fix(syncId.c_str());
-    if (index >= 0)
+    if (syncTarget_)
     {
-        if (auto* sync = dynamic_cast<BondTableSync*>(modify.fix[index]))
-        {
-            sync->detach();
-        }
+        *syncTarget_ = nullptr;
     }
 }
 
@@ -420,9 +415,11 @@ void IceBondForces::attach(const std::string& fixExternalId)
     // reads which fixes want pre_exchange calls.
     LAMMPS_NS::LAMMPS& engine = lmp_.engine();
     LAMMPS_NS::Modify& modify = *engine.modify;
+    syncTarget_ = std::make_shared<IceBondForces*>(this);
     std::string id = std::string(BondTable::fixId) + "Sync";
-    if (modify.find_fix(id.c_str()) >= 0)
+    if (const int existing = modify.find_fix(id.c_str()); existing >= 0)
     {
+        static_cast<BondTableSync*>(modify.fix[existing])->retarget(syncTarget_);
         return;
     }
     lmp_.command("fix " + id + " all external pf/callback 1 1");
@@ -430,7 +427,7 @@ void IceBondForces::attach(const std::string& fixExternalId)
     std::string group = "all";
     std::string style = "iceBondTableSync";
     char* args[] = {id.data(), group.data(), style.data()};
-    auto* sync = new BondTableSync(&engine, args, *this);
+    auto* sync = new BondTableSync(&engine, args, syncTarget_);
     delete modify.fix[index];
     modify.fix[index] = sync;
     modify.fmask[index] = sync->setmask();
