@@ -548,7 +548,7 @@ void IceBondForces::evaluate(Batch& batch)
         return;
     }
     const int nlocal = lmp_.engine().atom->nlocal;
-    BondLoad loads[BondModel::batchSize];
+    BondLoad* const loads = batch.loads;
     models_[static_cast<int>(batch.states[0]->family)].evaluateBatch
     (
         batch.size, batch.states, batch.stiffnesses, batch.a, batch.b, lmp_.timeStep(), loads
