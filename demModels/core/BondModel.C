@@ -2,6 +2,10 @@
 
 #include <cmath>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 namespace iceDEM
 {
 
@@ -16,19 +20,6 @@ double ratio(double load, double limit)
 } // namespace
 
 
-Vec3 rotateIntoTangentPlane(const Vec3& stored, const Vec3& n)
-{
-    const double length = stored.norm();
-    Vec3 projected = stored - stored.dot(n) * n;
-    const double projectedLength = projected.norm();
-    if (projectedLength <= 1e-300)
-    {
-        return Vec3::Zero();
-    }
-    return projected * (length / projectedLength);
-}
-
-
 BondStiffness BondStiffness::of
 (
     const BondFamilyParameters& family,
@@ -40,6 +31,7 @@ BondStiffness BondStiffness::of
     k.bondRadius = family.radiusMultiplier * std::min(radiusA, radiusB);
     const double rb2 = k.bondRadius * k.bondRadius;
     k.area = M_PI * rb2;
+    k.area15 = k.area * std::sqrt(k.area);
     k.inertia = M_PI * rb2 * rb2 / 4.0;
     k.polarInertia = 2.0 * k.inertia;
     k.beamLength = radiusA + radiusB;
@@ -89,6 +81,38 @@ BondState BondModel::create
 }
 
 
+inline bool BondModel::surelyIntact
+(
+    const BondState& state,
+    const BondStiffness& k,
+    double normalForce,
+    double shearForce2,
+    double twistTorque2,
+    double bendingTorque2
+) const
+{
+    // Below this fraction of a limit, round-off cannot make the exact ratio reach 1.
+    constexpr double margin = 0.99;
+    auto square = [](double x) { return x * x; };
+    const double sigmaT = margin * state.tensileStrength;
+    const double tau = margin * state.shearStrength;
+    if (family_.criterion == BreakageCriterion::separate)
+    {
+        return normalForce < sigmaT * k.area
+            && shearForce2 < square(tau * k.area)
+            && twistTorque2 < square(family_.twistStrengthFactor * tau * k.area15)
+            && bendingTorque2 < square(family_.bendingStrengthFactor * sigmaT * k.area15);
+    }
+    // Combined: sigma + bending stress < sigma_t, and (shear + twist stress)^2,
+    // which is at most twice the sum of their squares, < tau^2.
+    const double tensionReserve = sigmaT - normalForce / k.area;
+    return tensionReserve > 0.0
+        && bendingTorque2 * square(k.bondRadius / k.inertia) < square(tensionReserve)
+        && 2.0 * (shearForce2 / square(k.area) + twistTorque2 * square(k.bondRadius / k.polarInertia))
+           < square(tau);
+}
+
+
 BreakMode BondModel::breakage
 (
     const BondState& state,
@@ -106,7 +130,7 @@ BreakMode BondModel::breakage
 
     const double sigmaT = state.tensileStrength;
     const double tau = state.shearStrength;
-    const double area15 = k.area * std::sqrt(k.area);
+    const double area15 = k.area15;
 
     BreakMode mode = BreakMode::none;
     double worst = 1.0;
@@ -156,61 +180,307 @@ BondLoad BondModel::evaluate
     double dt
 ) const
 {
-    BondLoad load;
+    return evaluate(state, BondStiffness::of(family_, a.radius, b.radius), a, b, dt);
+}
 
-    const Vec3 separation = b.position - a.position;
-    const double length = separation.norm();
-    const Vec3 n = separation / length;
-    const BondStiffness k = BondStiffness::of(family_, a.radius, b.radius);
+
+BondLoad BondModel::evaluate
+(
+    BondState& state,
+    const BondStiffness& k,
+    const ParticleState& a,
+    const ParticleState& b,
+    double dt
+) const
+{
+    BondState* states[] = {&state};
+    const BondStiffness* stiffnesses[] = {&k};
+    const ParticleState* as[] = {&a};
+    const ParticleState* bs[] = {&b};
+    BondLoad load;
+    evaluateLanes<1>(1, states, stiffnesses, as, bs, dt, &load);
+    return load;
+}
+
+
+namespace
+{
+
+// One number per bond of a batch, and the vector operations of the bond
+// model on them, written out in the order Eigen evaluates them for one bond.
+template<int lanes>
+struct Lanes
+{
+    double v[lanes];
+};
+
+template<int lanes>
+struct Lanes3
+{
+    Lanes<lanes> x, y, z;
+};
+
+template<int lanes, class Op>
+inline Lanes<lanes> each(const Lanes<lanes>& p, const Lanes<lanes>& q, Op op)
+{
+    Lanes<lanes> r;
+    for (int l = 0; l < lanes; ++l) r.v[l] = op(p.v[l], q.v[l]);
+    return r;
+}
+
+template<int lanes>
+inline Lanes<lanes> operator+(const Lanes<lanes>& p, const Lanes<lanes>& q) { return each(p, q, [](double x, double y) { return x + y; }); }
+template<int lanes>
+inline Lanes<lanes> operator-(const Lanes<lanes>& p, const Lanes<lanes>& q) { return each(p, q, [](double x, double y) { return x - y; }); }
+template<int lanes>
+inline Lanes<lanes> operator*(const Lanes<lanes>& p, const Lanes<lanes>& q) { return each(p, q, [](double x, double y) { return x * y; }); }
+template<int lanes>
+inline Lanes<lanes> operator/(const Lanes<lanes>& p, const Lanes<lanes>& q) { return each(p, q, [](double x, double y) { return x / y; }); }
+
+template<int lanes>
+inline Lanes<lanes> operator-(const Lanes<lanes>& p)
+{
+    Lanes<lanes> r;
+    for (int l = 0; l < lanes; ++l) r.v[l] = -p.v[l];
+    return r;
+}
+
+template<int lanes>
+inline Lanes<lanes> squareRoot(const Lanes<lanes>& p)
+{
+    Lanes<lanes> r;
+    int l = 0;
+#ifdef __SSE2__
+    // Two lanes per instruction, same bits: std::sqrt would keep the compiler
+    // from pairing them, as it must set errno for a negative argument.
+    for (; l + 2 <= lanes; l += 2)
+    {
+        _mm_storeu_pd(r.v + l, _mm_sqrt_pd(_mm_loadu_pd(p.v + l)));
+    }
+#endif
+    for (; l < lanes; ++l)
+    {
+        r.v[l] = std::sqrt(p.v[l]);
+    }
+    return r;
+}
+
+template<int lanes>
+inline Lanes3<lanes> operator+(const Lanes3<lanes>& p, const Lanes3<lanes>& q) { return {p.x + q.x, p.y + q.y, p.z + q.z}; }
+template<int lanes>
+inline Lanes3<lanes> operator-(const Lanes3<lanes>& p, const Lanes3<lanes>& q) { return {p.x - q.x, p.y - q.y, p.z - q.z}; }
+template<int lanes>
+inline Lanes3<lanes> operator-(const Lanes3<lanes>& p) { return {-p.x, -p.y, -p.z}; }
+template<int lanes>
+inline Lanes3<lanes> operator*(const Lanes<lanes>& s, const Lanes3<lanes>& p) { return {s * p.x, s * p.y, s * p.z}; }
+template<int lanes>
+inline Lanes3<lanes> operator*(const Lanes3<lanes>& p, const Lanes<lanes>& s) { return {p.x * s, p.y * s, p.z * s}; }
+template<int lanes>
+inline Lanes<lanes> dot(const Lanes3<lanes>& p, const Lanes3<lanes>& q) { return p.x * q.x + p.y * q.y + p.z * q.z; }
+template<int lanes>
+inline Lanes<lanes> squaredNorm(const Lanes3<lanes>& p) { return dot(p, p); }
+
+template<int lanes>
+inline Lanes3<lanes> cross(const Lanes3<lanes>& p, const Lanes3<lanes>& q)
+{
+    return {p.y * q.z - p.z * q.y, p.z * q.x - p.x * q.z, p.x * q.y - p.y * q.x};
+}
+
+template<int lanes>
+inline Lanes<lanes> broadcast(double s)
+{
+    Lanes<lanes> r;
+    for (int l = 0; l < lanes; ++l) r.v[l] = s;
+    return r;
+}
+
+template<int lanes>
+inline void set(Lanes3<lanes>& p, int l, const Vec3& v)
+{
+    p.x.v[l] = v.x();
+    p.y.v[l] = v.y();
+    p.z.v[l] = v.z();
+}
+
+template<int lanes>
+inline Vec3 get(const Lanes3<lanes>& p, int l)
+{
+    return Vec3(p.x.v[l], p.y.v[l], p.z.v[l]);
+}
+
+//- rotateIntoTangentPlane on every lane.
+template<int lanes>
+inline Lanes3<lanes> rotateEachIntoTangentPlane(const Lanes3<lanes>& stored, const Lanes3<lanes>& n)
+{
+    const Lanes<lanes> length = squareRoot(squaredNorm(stored));
+    const Lanes3<lanes> projected = stored - dot(stored, n) * n;
+    const Lanes<lanes> projectedLength = squareRoot(squaredNorm(projected));
+    Lanes3<lanes> rotated = projected * (length / projectedLength);
+    for (int l = 0; l < lanes; ++l)
+    {
+        if (projectedLength.v[l] <= 1e-300)
+        {
+            rotated.x.v[l] = rotated.y.v[l] = rotated.z.v[l] = 0.0;
+        }
+    }
+    return rotated;
+}
+
+} // namespace
+
+
+Vec3 rotateIntoTangentPlane(const Vec3& stored, const Vec3& n)
+{
+    Lanes3<1> s, d;
+    set(s, 0, stored);
+    set(d, 0, n);
+    return get(rotateEachIntoTangentPlane(s, d), 0);
+}
+
+
+template<int lanes>
+void BondModel::evaluateLanes
+(
+    int count,
+    BondState* const states[],
+    const BondStiffness* const stiffnesses[],
+    const ParticleState* const a[],
+    const ParticleState* const b[],
+    double dt,
+    BondLoad loads[]
+) const
+{
+    // Unused lanes repeat the first bond; their results are dropped.
+    Lanes3<lanes> positionA, positionB, velocityA, velocityB, spinA, spinB, shearDisplacement, bendingAngle;
+    Lanes<lanes> radiusA, radiusB, restLength, twistAngle, kNormal, kShear, kTwist, kBending;
+    for (int l = 0; l < lanes; ++l)
+    {
+        const int bond = l < count ? l : 0;
+        const ParticleState& pa = *a[bond];
+        const ParticleState& pb = *b[bond];
+        const BondState& s = *states[bond];
+        const BondStiffness& k = *stiffnesses[bond];
+        set(positionA, l, pa.position);
+        set(positionB, l, pb.position);
+        set(velocityA, l, pa.velocity);
+        set(velocityB, l, pb.velocity);
+        set(spinA, l, pa.angularVelocity);
+        set(spinB, l, pb.angularVelocity);
+        set(shearDisplacement, l, s.shearDisplacement);
+        set(bendingAngle, l, s.bendingAngle);
+        restLength.v[l] = s.restLength;
+        twistAngle.v[l] = s.twistAngle;
+        radiusA.v[l] = pa.radius;
+        radiusB.v[l] = pb.radius;
+        kNormal.v[l] = k.normal;
+        kShear.v[l] = k.shear;
+        kTwist.v[l] = k.twist;
+        kBending.v[l] = k.bending;
+    }
+    const Lanes<lanes> step = broadcast<lanes>(dt);
+
+    const Lanes3<lanes> separation = positionB - positionA;
+    const Lanes<lanes> length = squareRoot(squaredNorm(separation));
+    const Lanes3<lanes> n = {separation.x / length, separation.y / length, separation.z / length};
 
     // Lever arms split the actual distance in the ratio of the radii, so that
     // the shear force's torques balance its moment and angular momentum is exact.
-    const double armA = length * a.radius / (a.radius + b.radius);
-    const double armB = length - armA;
-    load.centre = a.position + armA * n;
+    const Lanes<lanes> armA = length * radiusA / (radiusA + radiusB);
+    const Lanes<lanes> armB = length - armA;
+    const Lanes3<lanes> centre = positionA + armA * n;
 
-    const Vec3 contactVelocityA = a.velocity + a.angularVelocity.cross(armA * n);
-    const Vec3 contactVelocityB = b.velocity + b.angularVelocity.cross(-armB * n);
-    const Vec3 relativeVelocity = contactVelocityB - contactVelocityA;
-    const double normalVelocity = relativeVelocity.dot(n);
-    const Vec3 tangentialVelocity = relativeVelocity - normalVelocity * n;
+    const Lanes3<lanes> contactVelocityA = velocityA + cross(spinA, armA * n);
+    const Lanes3<lanes> contactVelocityB = velocityB + cross(spinB, -armB * n);
+    const Lanes3<lanes> relativeVelocity = contactVelocityB - contactVelocityA;
+    const Lanes<lanes> normalVelocity = dot(relativeVelocity, n);
+    const Lanes3<lanes> tangentialVelocity = relativeVelocity - normalVelocity * n;
 
-    const Vec3 relativeSpin = b.angularVelocity - a.angularVelocity;
-    const double twistRate = relativeSpin.dot(n);
-    const Vec3 bendingRate = relativeSpin - twistRate * n;
+    const Lanes3<lanes> relativeSpin = spinB - spinA;
+    const Lanes<lanes> twistRate = dot(relativeSpin, n);
+    const Lanes3<lanes> bendingRate = relativeSpin - twistRate * n;
 
-    state.shearDisplacement = rotateIntoTangentPlane(state.shearDisplacement, n) + tangentialVelocity * dt;
-    state.twistAngle += twistRate * dt;
-    state.bendingAngle = rotateIntoTangentPlane(state.bendingAngle, n) + bendingRate * dt;
+    shearDisplacement = rotateEachIntoTangentPlane(shearDisplacement, n) + tangentialVelocity * step;
+    twistAngle = twistAngle + twistRate * step;
+    bendingAngle = rotateEachIntoTangentPlane(bendingAngle, n) + bendingRate * step;
 
     // Spring loads, acting on b.
-    double normalForce = k.normal * (length - state.restLength);   // tension positive
-    Vec3 shearForce = -k.shear * state.shearDisplacement;
-    const Vec3 twistTorque = -k.twist * state.twistAngle * n;
-    const Vec3 bendingTorque = -k.bending * state.bendingAngle;
-
-    load.broke = breakage
-    (
-        state, k, normalForce, shearForce.norm(), twistTorque.norm(), bendingTorque.norm()
-    );
-    if (load.broke != BreakMode::none)
-    {
-        return load;
-    }
+    const Lanes<lanes> springNormalForce = kNormal * (length - restLength);   // tension positive
+    Lanes<lanes> normalForce = springNormalForce;
+    Lanes3<lanes> shearForce = -kShear * shearDisplacement;
+    const Lanes3<lanes> twistTorque = (-kTwist * twistAngle) * n;
+    const Lanes3<lanes> bendingTorque = -kBending * bendingAngle;
+    const Lanes<lanes> shear2 = squaredNorm(shearForce);
+    const Lanes<lanes> twist2 = squaredNorm(twistTorque);
+    const Lanes<lanes> bending2 = squaredNorm(bendingTorque);
 
     if (damping_.model == DampingModel::viscous && damping_.dampingRatio > 0.0)
     {
-        const double reducedMass = a.mass * b.mass / (a.mass + b.mass);
-        normalForce += 2.0 * damping_.dampingRatio * std::sqrt(reducedMass * k.normal) * normalVelocity;
-        shearForce -= 2.0 * damping_.dampingRatio * std::sqrt(reducedMass * k.shear) * tangentialVelocity;
+        Lanes<lanes> reducedMass;
+        for (int l = 0; l < lanes; ++l)
+        {
+            const int bond = l < count ? l : 0;
+            reducedMass.v[l] = a[bond]->mass * b[bond]->mass / (a[bond]->mass + b[bond]->mass);
+        }
+        const Lanes<lanes> ratio2 = broadcast<lanes>(2.0 * damping_.dampingRatio);
+        normalForce = normalForce + ratio2 * squareRoot(reducedMass * kNormal) * normalVelocity;
+        shearForce = shearForce - (ratio2 * squareRoot(reducedMass * kShear)) * tangentialVelocity;
     }
 
-    const Vec3 forceOnB = -normalForce * n + shearForce;
-    load.normalForce = normalForce;
-    load.forceOnA = -forceOnB;
-    load.torqueOnA = (armA * n).cross(-shearForce) - twistTorque - bendingTorque;
-    load.torqueOnB = (-armB * n).cross(shearForce) + twistTorque + bendingTorque;
-    return load;
+    const Lanes3<lanes> forceOnB = -normalForce * n + shearForce;
+    const Lanes3<lanes> torqueOnA = cross(armA * n, -shearForce) - twistTorque - bendingTorque;
+    const Lanes3<lanes> torqueOnB = cross(-armB * n, shearForce) + twistTorque + bendingTorque;
+
+    for (int l = 0; l < count; ++l)
+    {
+        BondState& s = *states[l];
+        s.shearDisplacement = get(shearDisplacement, l);
+        s.twistAngle = twistAngle.v[l];
+        s.bendingAngle = get(bendingAngle, l);
+
+        BondLoad& load = loads[l];
+        load.centre = get(centre, l);
+        load.length = length.v[l];
+        load.direction = get(n, l);
+        load.broke = BreakMode::none;
+        if
+        (
+            !family_.unbreakable
+         && !surelyIntact(s, *stiffnesses[l], springNormalForce.v[l], shear2.v[l], twist2.v[l], bending2.v[l])
+        )
+        {
+            // The limits apply to the spring loads, before any viscous damping.
+            load.broke = breakage
+            (
+                s, *stiffnesses[l], springNormalForce.v[l],
+                std::sqrt(shear2.v[l]), std::sqrt(twist2.v[l]), std::sqrt(bending2.v[l])
+            );
+        }
+        if (load.broke != BreakMode::none)
+        {
+            load.normalForce = 0.0;
+            load.forceOnA = load.torqueOnA = load.torqueOnB = Vec3::Zero();
+            continue;
+        }
+        load.normalForce = normalForce.v[l];
+        load.forceOnA = -get(forceOnB, l);
+        load.torqueOnA = get(torqueOnA, l);
+        load.torqueOnB = get(torqueOnB, l);
+    }
+}
+
+
+void BondModel::evaluateBatch
+(
+    int count,
+    BondState* const states[],
+    const BondStiffness* const stiffnesses[],
+    const ParticleState* const a[],
+    const ParticleState* const b[],
+    double dt,
+    BondLoad loads[]
+) const
+{
+    evaluateLanes<batchSize>(count, states, stiffnesses, a, b, dt, loads);
 }
 
 

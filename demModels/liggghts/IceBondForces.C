@@ -6,13 +6,17 @@
 #include "LiggghtsInstance.H"
 
 #include "atom.h"
+#include "fix.h"
 #include "fix_external.h"
 #include "lammps.h"
-#include "update.h"
+#include "modify.h"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <sstream>
+#include <tuple>
 
 namespace iceDEM
 {
@@ -29,34 +33,37 @@ Vec3 row(double** a, int i)
 } // namespace
 
 
-void BondLoadSums::reset(int atoms, int capacity)
+//- Lets LIGGGHTS tell IceBondForces that it is about to move atoms (between
+//  ranks, or re-sorting them on one) or write a restart file: the moment the
+//  per-atom table must hold every history. LIGGGHTS has no input-script style
+//  for it; IceBondForces::attach puts it in a placeholder fix's place.
+class BondTableSync : public LAMMPS_NS::Fix
 {
-    capacity_ = capacity;
-    count_.assign(atoms, 0);
-    entries_.resize(static_cast<std::size_t>(atoms) * capacity);
-}
+public:
+    BondTableSync(LAMMPS_NS::LAMMPS* engine, char** args, std::shared_ptr<IceBondForces*> target)
+    :
+        Fix(engine, 3, args),
+        target_(std::move(target))
+    {}
 
+    void retarget(std::shared_ptr<IceBondForces*> target) { target_ = std::move(target); }
 
-void BondLoadSums::add(int atom, long partnerTag, const Vec3& force, const Vec3& torque)
-{
-    entries_[static_cast<std::size_t>(atom) * capacity_ + count_[atom]++] = {partnerTag, force, torque};
-}
+    int setmask() override { return LAMMPS_NS::FixConst::PRE_EXCHANGE; }
+    void setup_pre_exchange() override { sync(); }
+    void pre_exchange() override { sync(); }
 
-
-void BondLoadSums::addSumTo(int atom, double* force, double* torque)
-{
-    Entry* first = &entries_[static_cast<std::size_t>(atom) * capacity_];
-    Entry* last = first + count_[atom];
-    std::sort(first, last, [](const Entry& x, const Entry& y) { return x.partnerTag < y.partnerTag; });
-    for (const Entry* e = first; e != last; ++e)
+private:
+    void sync()
     {
-        for (int k = 0; k < 3; ++k)
+        if (*target_)
         {
-            force[k] += e->force[k];
-            torque[k] += e->torque[k];
+            (*target_)->syncTable();
         }
     }
-}
+
+    // Null once the IceBondForces is destroyed (LIGGGHTS may outlive it).
+    std::shared_ptr<IceBondForces*> target_;
+};
 
 
 IceBondForces::IceBondForces
@@ -76,6 +83,15 @@ IceBondForces::IceBondForces
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
 {}
+
+
+IceBondForces::~IceBondForces()
+{
+    if (syncTarget_)
+    {
+        *syncTarget_ = nullptr;
+    }
+}
 
 
 ParticleState IceBondForces::particle(int i) const
@@ -113,6 +129,7 @@ void IceBondForces::createBonds
         state.family = pair.family;
         states.push_back(state);
     }
+    syncTable();
     for (const BondState& state : states)
     {
         store(state);
@@ -122,6 +139,7 @@ void IceBondForces::createBonds
 
 void IceBondForces::restoreBonds(const std::vector<BondState>& states)
 {
+    listIsCurrent_ = false;
     for (int i = 0; i < lmp_.engine().atom->nlocal; ++i)
     {
         table_.clear(i);
@@ -135,6 +153,7 @@ void IceBondForces::restoreBonds(const std::vector<BondState>& states)
 
 void IceBondForces::addBonds(const std::vector<BondState>& states)
 {
+    syncTable();    // the running histories go back to the table before it changes
     for (const BondState& state : states)
     {
         store(state);
@@ -163,7 +182,198 @@ void IceBondForces::store(const BondState& state)
 }
 
 
-std::vector<BondState> IceBondForces::localBondStates() const
+BondTable& IceBondForces::table()
+{
+    syncTable();
+    return table_;
+}
+
+
+void IceBondForces::syncTable()
+{
+    if (!listIsCurrent_)
+    {
+        return;
+    }
+    const int nlocal = lmp_.engine().atom->nlocal;
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        if (!intact_[k])
+        {
+            continue;   // already gone from the table
+        }
+        const BondState& state = list_[k].state;
+        for (const auto& [own, other, atom] :
+            {std::tuple(state.tagA, state.tagB, atomOf_[list_[k].a]),
+             std::tuple(state.tagB, state.tagA, atomOf_[list_[k].b])})
+        {
+            if (atom < nlocal)
+            {
+                table_.write(atom, table_.find(atom, other), state, own);
+            }
+        }
+    }
+    listIsCurrent_ = false;
+}
+
+void IceBondForces::rebuildList()
+{
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int nlocal = atom.nlocal;
+    const int* tag = atom.tag;
+
+    // The bonds, each once, with LIGGGHTS' indices of their atoms for now.
+    list_.clear();
+    for (int i = 0; i < nlocal; ++i)
+    {
+        const int n = table_.count(i);
+        for (int slot = 0; slot < n; ++slot)
+        {
+            const long partnerTag = table_.partner(i, slot);
+            const int j = atom.map(static_cast<int>(partnerTag));
+            if (j < 0)
+            {
+                std::ostringstream msg;
+                msg << "bond partner " << partnerTag << " of particle " << tag[i]
+                    << " at (" << row(atom.x, i).transpose() << ") is not within this rank's"
+                    << " ghost cut-off: the bond has stretched too far, or the partner left the simulation box";
+                fail(msg.str());
+                continue;
+            }
+            if (j < nlocal && tag[i] > partnerTag)
+            {
+                continue;   // listed from the partner, which has the lower tag
+            }
+            ListedBond bond;
+            bond.state = table_.read(i, slot, tag[i]);
+            const bool iIsA = tag[i] < partnerTag;
+            bond.a = iIsA ? i : j;
+            bond.b = iIsA ? j : i;
+            list_.push_back(bond);
+        }
+    }
+
+    // The local atoms in LIGGGHTS' order, which is spatial (it sorts atoms
+    // in bins at each run's set-up and every 1000 steps), then the bonded ghosts.
+    std::vector<int> entryOf(nlocal + atom.nghost, -1);
+    atomOf_.clear();
+    for (int i = 0; i < nlocal; ++i)
+    {
+        entryOf[i] = 0;
+        atomOf_.push_back(i);
+    }
+    for (const ListedBond& bond : list_)
+    {
+        for (int end : {bond.a, bond.b})
+        {
+            if (entryOf[end] < 0)
+            {
+                entryOf[end] = 0;
+                atomOf_.push_back(end);
+            }
+        }
+    }
+    particles_.resize(atomOf_.size());
+    for (std::size_t e = 0; e < atomOf_.size(); ++e)
+    {
+        entryOf[atomOf_[e]] = static_cast<int>(e);
+        particles_[e].radius = atom.radius[atomOf_[e]];
+        particles_[e].mass = atom.rmass[atomOf_[e]];
+    }
+
+    std::map<std::tuple<int, double, double>, int> stiffnessIndex;
+    stiffnesses_.clear();
+    for (ListedBond& bond : list_)
+    {
+        bond.a = entryOf[bond.a];
+        bond.b = entryOf[bond.b];
+        const int family = static_cast<int>(bond.state.family);
+        const double radiusA = particles_[bond.a].radius;
+        const double radiusB = particles_[bond.b].radius;
+        const auto known = stiffnessIndex.find({family, radiusA, radiusB});
+        if (known != stiffnessIndex.end())
+        {
+            bond.stiffness = known->second;
+            continue;
+        }
+        bond.stiffness = static_cast<int>(stiffnesses_.size());
+        stiffnessIndex.emplace(std::make_tuple(family, radiusA, radiusB), bond.stiffness);
+        stiffnesses_.push_back(BondStiffness::of(models_[family].parameters(), radiusA, radiusB));
+    }
+    std::sort(list_.begin(), list_.end(), [](const ListedBond& x, const ListedBond& y)
+    {
+        return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+    });
+    intact_.assign(list_.size(), 1);
+    pairLoads_.resize(list_.size());
+
+    // Each local atom's bonds, by partner tag.
+    const int entries = static_cast<int>(atomOf_.size());
+    firstOfAtom_.assign(entries + 1, 0);
+    for (const ListedBond& bond : list_)
+    {
+        for (int end : {bond.a, bond.b})
+        {
+            if (atomOf_[end] < nlocal)
+            {
+                ++firstOfAtom_[end + 1];
+            }
+        }
+    }
+    for (int e = 0; e < entries; ++e)
+    {
+        firstOfAtom_[e + 1] += firstOfAtom_[e];
+    }
+    atomBonds_.resize(firstOfAtom_[entries]);
+    std::vector<int> next(firstOfAtom_.begin(), firstOfAtom_.end() - 1);
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        const ListedBond& bond = list_[k];
+        if (atomOf_[bond.a] < nlocal)
+        {
+            atomBonds_[next[bond.a]++] = 2 * static_cast<int>(k);
+        }
+        if (atomOf_[bond.b] < nlocal)
+        {
+            atomBonds_[next[bond.b]++] = 2 * static_cast<int>(k) + 1;
+        }
+    }
+    auto partnerTag = [&](int entry)
+    {
+        const BondState& s = list_[entry / 2].state;
+        return entry % 2 ? s.tagA : s.tagB;
+    };
+    for (int e = 0; e < entries; ++e)
+    {
+        std::sort(atomBonds_.begin() + firstOfAtom_[e], atomBonds_.begin() + firstOfAtom_[e + 1],
+            [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
+    }
+    lastA_.resize(entries);
+    for (int e = 0, last = 0; e < entries; ++e)
+    {
+        last = std::max(last, e);
+        for (int n = firstOfAtom_[e]; n < firstOfAtom_[e + 1]; ++n)
+        {
+            last = std::max(last, list_[atomBonds_[n] / 2].a);
+        }
+        lastA_[e] = last;
+    }
+    listIsCurrent_ = true;
+    listedLocal_ = nlocal;
+    listedGhost_ = atom.nghost;
+}
+
+void IceBondForces::removeFromTable(int atom, long partnerTag)
+{
+    const int slot = table_.find(atom, partnerTag);
+    if (slot >= 0)
+    {
+        table_.remove(atom, slot);
+    }
+}
+
+
+std::vector<BondState> IceBondForces::tableBondStates() const
 {
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     std::vector<BondState> states;
@@ -182,10 +392,55 @@ std::vector<BondState> IceBondForces::localBondStates() const
 }
 
 
+std::vector<BondState> IceBondForces::localBondStates() const
+{
+    if (!listIsCurrent_)
+    {
+        return tableBondStates();
+    }
+    const int nlocal = lmp_.engine().atom->nlocal;
+    std::vector<BondState> states;
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        if (intact_[k] && atomOf_[list_[k].a] < nlocal)
+        {
+            states.push_back(list_[k].state);
+        }
+    }
+    std::sort(states.begin(), states.end(), [](const BondState& x, const BondState& y)
+    {
+        return std::tie(x.tagA, x.tagB) < std::tie(y.tagA, y.tagB);
+    });
+    return states;
+}
+
+
 void IceBondForces::attach(const std::string& fixExternalId)
 {
     auto& fix = static_cast<LAMMPS_NS::FixExternal&>(lmp_.fix(fixExternalId));
     fix.set_callback(&IceBondForces::callback, this);
+
+    // LIGGGHTS makes fixes only of its own styles: make a placeholder, then
+    // put the synchronising fix in its place before the next run's set-up
+    // reads which fixes want pre_exchange calls.
+    LAMMPS_NS::LAMMPS& engine = lmp_.engine();
+    LAMMPS_NS::Modify& modify = *engine.modify;
+    syncTarget_ = std::make_shared<IceBondForces*>(this);
+    std::string id = std::string(BondTable::fixId) + "Sync";
+    if (const int existing = modify.find_fix(id.c_str()); existing >= 0)
+    {
+        static_cast<BondTableSync*>(modify.fix[existing])->retarget(syncTarget_);
+        return;
+    }
+    lmp_.command("fix " + id + " all external pf/callback 1 1");
+    const int index = modify.find_fix(id.c_str());
+    std::string group = "all";
+    std::string style = "iceBondTableSync";
+    char* args[] = {id.data(), group.data(), style.data()};
+    auto* sync = new BondTableSync(&engine, args, syncTarget_);
+    delete modify.fix[index];
+    modify.fix[index] = sync;
+    modify.fmask[index] = sync->setmask();
 }
 
 
@@ -215,110 +470,181 @@ void IceBondForces::fail(const std::string& what)
 void IceBondForces::compute()
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
-    const int nlocal = atom.nlocal;
-    const int* tag = atom.tag;
-    const double dt = lmp_.timeStep();
-    const double time = lmp_.time();
-    loads_.reset(nlocal, table_.capacity());
-
-    for (int i = 0; i < nlocal; ++i)
+    if (listIsCurrent_ && (atom.nlocal != listedLocal_ || atom.nghost != listedGhost_))
     {
-        int n = table_.count(i);
-        for (int slot = 0; slot < n;)
+        fail("LIGGGHTS moved atoms without synchronising the bond table first (internal error)");
+        return;
+    }
+    if (!listIsCurrent_)
+    {
+        rebuildList();
+    }
+
+    // One pass in spatial order: copy atoms in just ahead of the bonds that
+    // need them, and sum each atom's loads soon after its last bond is
+    // stepped, while both are still in cache.
+    const int entries = static_cast<int>(atomOf_.size());
+    int gathered = 0, summed = 0;
+    auto gatherUpTo = [&](int last)
+    {
+        for (; gathered <= last; ++gathered)
         {
-            const long partnerTag = table_.partner(i, slot);
-            const int j = atom.map(static_cast<int>(partnerTag));
-            if (j < 0)
-            {
-                std::ostringstream msg;
-                msg << "bond partner " << partnerTag << " of particle " << tag[i]
-                    << " at (" << row(atom.x, i).transpose() << ") is not within this rank's"
-                    << " ghost cut-off: the bond has stretched too far, or the partner left the simulation box";
-                fail(msg.str());
-                ++slot;
-                continue;
-            }
-            const bool partnerLocal = j < nlocal;
-            if (partnerLocal && tag[i] > partnerTag)
-            {
-                ++slot;   // evaluated from the partner, which has the lower tag
-                continue;
-            }
+            gather(gathered);
+        }
+    };
+    auto sumBelow = [&](int firstUnstepped)
+    {
+        for (; summed < entries && lastA_[summed] < firstUnstepped; ++summed)
+        {
+            gatherUpTo(summed);
+            sumLoads(summed);
+        }
+    };
+    constexpr int sumEvery = 64;   // entries of a between sums
+    int steppedBelow = 0;          // every bond with a below this is stepped
+    Batch batch;
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        const ListedBond& bond = list_[k];
+        if (bond.a >= steppedBelow + sumEvery)
+        {
+            evaluate(batch);
+            steppedBelow = bond.a;
+            sumBelow(steppedBelow);
+        }
+        if (!intact_[k])
+        {
+            continue;
+        }
+        gatherUpTo(std::max(bond.a, bond.b));
+        if (batch.size > 0 && bond.state.family != batch.states[0]->family)
+        {
+            evaluate(batch);
+        }
+        const int l = batch.size++;
+        batch.bonds[l] = k;
+        batch.states[l] = &list_[k].state;
+        batch.stiffnesses[l] = &stiffnesses_[bond.stiffness];
+        batch.a[l] = &particles_[bond.a];
+        batch.b[l] = &particles_[bond.b];
+        if (batch.size == BondModel::batchSize)
+        {
+            evaluate(batch);
+        }
+    }
+    evaluate(batch);
+    sumBelow(entries);
+}
 
-            BondState state = table_.read(i, slot, tag[i]);
-            const bool iIsA = tag[i] < partnerTag;
-            const int a = iIsA ? i : j;
-            const int b = iIsA ? j : i;
-            const ParticleState pa = particle(a);
-            const ParticleState pb = particle(b);
-            const BondLoad load = models_[static_cast<int>(state.family)].evaluate(state, pa, pb, dt);
-            const int partnerSlot = partnerLocal ? table_.find(j, tag[i]) : -1;
 
-            if (load.broke != BreakMode::none)
-            {
-                if (a < nlocal)
-                {
-                    breaks_.push_back({time, load.centre, state.tagA, state.tagB, state.family, load.broke});
-                }
-                table_.remove(i, slot);
-                if (partnerSlot >= 0)
-                {
-                    table_.remove(j, partnerSlot);
-                }
-                --n;
-                continue;
-            }
+void IceBondForces::gather(int entry)
+{
+    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int i = atomOf_[entry];
+    ParticleState& p = particles_[entry];
+    for (int c = 0; c < 3; ++c)
+    {
+        p.position[c] = atom.x[i][c];
+        p.velocity[c] = atom.v[i][c];
+        p.angularVelocity[c] = atom.omega[i][c];
+    }
+}
 
-            Vec3 forceOnA = load.forceOnA;
-            const Vec3 separation = pb.position - pa.position;
-            const double overlap = pa.radius + pb.radius - separation.norm();
-            if (overlap > 0.0)
-            {
-                // Cancel the contact's normal spring: a bonded pair has the bond only.
-                forceOnA += contactNormalStiffness_ * overlap * separation.normalized();
-            }
 
+void IceBondForces::evaluate(Batch& batch)
+{
+    if (batch.size == 0)
+    {
+        return;
+    }
+    const int nlocal = lmp_.engine().atom->nlocal;
+    BondLoad* const loads = batch.loads;
+    models_[static_cast<int>(batch.states[0]->family)].evaluateBatch
+    (
+        batch.size, batch.states, batch.stiffnesses, batch.a, batch.b, lmp_.timeStep(), loads
+    );
+    for (int l = 0; l < batch.size; ++l)
+    {
+        const std::size_t k = batch.bonds[l];
+        const BondState& state = list_[k].state;
+        const BondLoad& load = loads[l];
+        if (load.broke != BreakMode::none)
+        {
+            const int a = atomOf_[list_[k].a];
+            const int b = atomOf_[list_[k].b];
             if (a < nlocal)
             {
-                loads_.add(a, state.tagB, forceOnA, load.torqueOnA);
+                breaks_.push_back({lmp_.time(), load.centre, state.tagA, state.tagB, state.family, load.broke});
+                removeFromTable(a, state.tagB);
             }
             if (b < nlocal)
             {
-                loads_.add(b, state.tagA, -forceOnA, load.torqueOnB);
+                removeFromTable(b, state.tagA);
             }
-            table_.write(i, slot, state, tag[i]);
-            if (partnerSlot >= 0)
-            {
-                table_.write(j, partnerSlot, state, partnerTag);
-            }
-            ++slot;
+            intact_[k] = 0;
+            continue;
+        }
+        PairLoad& out = pairLoads_[k];
+        out.forceOnA = load.forceOnA;
+        const double overlap = batch.a[l]->radius + batch.b[l]->radius - load.length;
+        if (overlap > 0.0)
+        {
+            // Cancel the contact's normal spring: a bonded pair has the bond only.
+            out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
+        }
+        out.torqueOnA = load.torqueOnA;
+        out.torqueOnB = load.torqueOnB;
+    }
+    batch.size = 0;
+}
+
+
+void IceBondForces::sumLoads(int entry)
+{
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    const int i = atomOf_[entry];
+    if (i >= atom.nlocal)
+    {
+        return;   // a ghost: its owner sums its loads
+    }
+    Vec3 force = row(atom.f, i);
+    Vec3 moment = row(atom.torque, i);
+    for (int n = firstOfAtom_[entry]; n < firstOfAtom_[entry + 1]; ++n)
+    {
+        const int bondEnd = atomBonds_[n];
+        const int k = bondEnd / 2;
+        if (!intact_[k])
+        {
+            continue;
+        }
+        // Branch-free: whether the atom is the bond's a or b is random.
+        const PairLoad& load = pairLoads_[k];
+        const int isB = bondEnd % 2;
+        const double sign = 1 - 2 * isB;
+        const Vec3& bondMoment = isB ? load.torqueOnB : load.torqueOnA;
+        for (int c = 0; c < 3; ++c)
+        {
+            force[c] += sign * load.forceOnA[c];
+            moment[c] += bondMoment[c];
         }
     }
 
-    const bool hysteretic = damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0;
-    for (int i = 0; i < nlocal; ++i)
+    if (!std::isfinite(force.squaredNorm()) || !std::isfinite(moment.squaredNorm()))
     {
-        loads_.addSumTo(i, atom.f[i], atom.torque[i]);
-        Vec3 force = row(atom.f, i);
-        Vec3 torque = row(atom.torque, i);
-        if (!std::isfinite(force.squaredNorm()) || !std::isfinite(torque.squaredNorm()))
-        {
-            std::ostringstream msg;
-            msg << "non-finite force on particle " << tag[i] << " at (" << row(atom.x, i).transpose()
-                << "): the run has blown up";
-            fail(msg.str());
-            continue;
-        }
-        if (hysteretic)
-        {
-            applyHystereticDamping(force, row(atom.v, i), damping_.alpha);
-            applyHystereticDamping(torque, row(atom.omega, i), damping_.alpha);
-            for (int k = 0; k < 3; ++k)
-            {
-                atom.f[i][k] = force[k];
-                atom.torque[i][k] = torque[k];
-            }
-        }
+        std::ostringstream msg;
+        msg << "non-finite force on particle " << atom.tag[i] << " at (" << row(atom.x, i).transpose()
+            << "): the run has blown up";
+        fail(msg.str());
+    }
+    else if (damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0)
+    {
+        applyHystereticDamping(force, particles_[entry].velocity, damping_.alpha);
+        applyHystereticDamping(moment, particles_[entry].angularVelocity, damping_.alpha);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+        atom.f[i][c] = force[c];
+        atom.torque[i][c] = moment[c];
     }
 }
 
@@ -346,6 +672,20 @@ double IceBondForces::localBondEnergy() const
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;   // map() is not const
     double energy = 0.0;
+    if (listIsCurrent_)
+    {
+        for (std::size_t k = 0; k < list_.size(); ++k)
+        {
+            const ListedBond& bond = list_[k];
+            const int a = atomOf_[bond.a];
+            if (intact_[k] && a < atom.nlocal)
+            {
+                energy += models_[static_cast<int>(bond.state.family)]
+                    .potentialEnergy(bond.state, particle(a), particle(atomOf_[bond.b]));
+            }
+        }
+        return energy;
+    }
     for (int i = 0; i < atom.nlocal; ++i)
     {
         const int n = table_.count(i);

@@ -1,9 +1,12 @@
 // A spinning, shearing block of bonded spheres flies across the boundary
 // between two MPI ranks. Writes every particle's state and every bond's
 // history at the end, for comparison between 1 and 2 ranks: bonds and their
-// histories must travel with their atoms.
+// histories must travel with their atoms. With `resync`, the bond table is
+// read and bonds are added (none) between the run chunks, as output and
+// freeze-bond creation do: IceBondForces then copies its step list into the
+// table and rebuilds it, which must change nothing.
 //
-// usage: mpirun -np N bondMigration OUTPUT.txt
+// usage: mpirun -np N bondMigration OUTPUT.txt [resync]
 
 #include "BondBuilder.H"
 #include "IceBondForces.H"
@@ -20,6 +23,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <string>
 
 using namespace iceDEM;
 
@@ -53,9 +57,10 @@ int main(int argc, char** argv)
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-    if (argc != 2)
+    const bool resync = argc == 3 && std::string(argv[2]) == "resync";
+    if (argc != 2 && !resync)
     {
-        if (rank == 0) std::cerr << "usage: bondMigration OUTPUT.txt" << std::endl;
+        if (rank == 0) std::cerr << "usage: bondMigration OUTPUT.txt [resync]" << std::endl;
         MPI_Finalize();
         return 1;
     }
@@ -128,6 +133,11 @@ int main(int argc, char** argv)
         for (int chunk = 0; chunk < 20; ++chunk)
         {
             lmp.command(chunk == 0 ? "run 1000" : "run 1000 pre no post no");
+            if (resync)
+            {
+                bonds.table();
+                bonds.createBonds(particles, {});
+            }
             const long n = sumOverRanks(MPI_COMM_WORLD, static_cast<long>(bonds.localLinks().size()));
             if (n != bondsAtStart || !bonds.failure().empty())
             {

@@ -324,3 +324,47 @@ TEST(BondBreakageStrength, BrokenBondCarriesNoLoad)
     EXPECT_EQ(load.forceOnA.norm(), 0.0);
     EXPECT_EQ(load.torqueOnA.norm() + load.torqueOnB.norm(), 0.0);
 }
+
+TEST(BondBatch, SameBitsAsOneBondAtATime)
+{
+    // Three loaded bonds, one of them breaking, and viscous damping: the batch
+    // must give each bond exactly what evaluate gives it alone.
+    DampingParameters damping;
+    damping.model = DampingModel::viscous;
+    damping.dampingRatio = 0.3;
+    BondModel model(iceFamily(), damping);
+    const double stretches[] = {2e-7, -3e-7, 0.01};
+    Pair pairs[3];
+    BondState alone[3], batched[3];
+    for (int i = 0; i < 3; ++i)
+    {
+        Pair& p = pairs[i];
+        alone[i] = batched[i] = model.create(1, 2, p.a, p.b);
+        alone[i].shearDisplacement = batched[i].shearDisplacement = Vec3(0.0, 1e-8 * (i + 1), -2e-8);
+        alone[i].bendingAngle = batched[i].bendingAngle = Vec3(3e-7, 0.0, 1e-7 * i);
+        p.b.position += Vec3(stretches[i], 1e-5 * i, -2e-5);
+        p.a.velocity = Vec3(0.01, -0.02 * i, 0.003);
+        p.b.angularVelocity = Vec3(0.5, 0.1 * i, -0.7);
+    }
+    BondState* states[] = {&batched[0], &batched[1], &batched[2]};
+    const BondStiffness k = BondStiffness::of(iceFamily(), radius, radius);
+    const BondStiffness* ks[] = {&k, &k, &k};
+    const ParticleState* as[] = {&pairs[0].a, &pairs[1].a, &pairs[2].a};
+    const ParticleState* bs[] = {&pairs[0].b, &pairs[1].b, &pairs[2].b};
+    BondLoad loads[BondModel::batchSize];
+    model.evaluateBatch(3, states, ks, as, bs, dt, loads);
+    for (int i = 0; i < 3; ++i)
+    {
+        const BondLoad load = model.evaluate(alone[i], pairs[i].a, pairs[i].b, dt);
+        EXPECT_EQ(loads[i].broke, load.broke) << i;
+        EXPECT_EQ(loads[i].broke, i == 2 ? BreakMode::tension : BreakMode::none) << i;
+        EXPECT_EQ(loads[i].forceOnA, load.forceOnA) << i;
+        EXPECT_EQ(loads[i].torqueOnA, load.torqueOnA) << i;
+        EXPECT_EQ(loads[i].torqueOnB, load.torqueOnB) << i;
+        EXPECT_EQ(loads[i].normalForce, load.normalForce) << i;
+        EXPECT_EQ(batched[i].shearDisplacement, alone[i].shearDisplacement) << i;
+        EXPECT_EQ(batched[i].bendingAngle, alone[i].bendingAngle) << i;
+        EXPECT_EQ(batched[i].twistAngle, alone[i].twistAngle) << i;
+    }
+    EXPECT_GT(loads[0].forceOnA.norm(), 0.0);
+}

@@ -53,6 +53,7 @@ def main():
     a = p.parse_args()
     if shutil.which("yade") is None:
         sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
+    load_start = os.getloadavg()[0]   # the machine may be shared: timings are only comparable at low load
     case = iceCases.copy_case(os.path.join(here, ".."), os.path.join(a.out, "case"))
     app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
     results = []
@@ -92,6 +93,7 @@ def main():
     bonded, granular, yade = results
     report = {
         "machine": os.uname().nodename, "cores_used": 1, "date": time.strftime("%Y-%m-%d %H:%M"),
+        "cores": os.cpu_count(), "load_average_1min_start": load_start, "load_average_1min_end": os.getloadavg()[0],
         "results": results,
         "bonded_cost_over_granular": granular["particle_steps_per_s"] / bonded["particle_steps_per_s"],
         "bonded_speedup_over_yade": bonded["particle_steps_per_s"] / yade["particle_steps_per_s"],
@@ -105,7 +107,9 @@ def main():
                      f"{r['particle_steps_per_s']:.3g} | {r['peak_rss_MiB']:.0f} |")
     lines.append("")
     lines.append(f"Bonded cost per particle-step / plain granular: {report['bonded_cost_over_granular']:.2f} "
-                 f"(limit 2.5). Bonded speed / Yade: {report['bonded_speedup_over_yade']:.2f}.")
+                 f"(limit 2.5). Bonded speed / Yade: {report['bonded_speedup_over_yade']:.2f}. "
+                 f"Machine load (1-minute average) {report['load_average_1min_start']:.1f} at the start, "
+                 f"{report['load_average_1min_end']:.1f} at the end, on {report['cores']} cores.")
     iceCases.write_atomically(os.path.join(a.out, "benchmark.md"), "\n".join(lines) + "\n")
     print("\n".join(lines))
 
