@@ -4,7 +4,7 @@
 // rest, freeze-bonds them where they touch and saves the bonded rubble for
 // the punch and ridge scenes.
 //
-// Usage: rubbleDEM [-case DIR] [-stage settle|bond|all] [-resume]
+// Usage: rubbleDEM [-case DIR] [-stage settle|bond|all] [-shape cuboid|empirical] [-resume]
 // Reads  constant/{rubbleProperties,iceProperties,freezeBondProperties,couplingProperties,g},
 //        DEM/in.rubbleBeam
 // Writes DEM/settled.h5, DEM/rubble.h5 (the bonded rubble),

@@ -71,6 +71,7 @@ double percentile(std::vector<double> v, double q)
 RubbleSettings RubbleSettings::read(int argc, char** argv)
 {
     RubbleSettings s;
+    std::string shapeOverride;
     for (int k = 1; k < argc; ++k)
     {
         const std::string arg = argv[k];
@@ -84,10 +85,11 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
             }
         }
         else if (arg == "-resume") s.resume = true;
+        else if (arg == "-shape" && k + 1 < argc) shapeOverride = argv[++k];
         else
         {
             throw InputError("command line", arg,
-                "unknown option or missing value; allowed: -case DIR -stage settle|bond|all -resume");
+                "unknown option or missing value; allowed: -case DIR -stage settle|bond|all -shape cuboid|empirical -resume");
         }
     }
     const std::string file = s.caseDir + "/constant/rubbleProperties";
@@ -102,7 +104,9 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     const Dictionary& b = d.subDict("blocks");
     b.checkKeys({"shape", "sizes", "syntheticCoeffs", "particleDiameter", "layers", "rubbleThickness",
                  "expectedPorosity", "seed"});
-    s.shape = blockShapeFromName(b.getWord("shape"), file, b.entryPath("shape"));
+    s.shape = shapeOverride.empty()
+        ? blockShapeFromName(b.getWord("shape"), file, b.entryPath("shape"))
+        : blockShapeFromName(shapeOverride, "command line", "-shape");
     const std::string sizes = b.getString("sizes");
     if (sizes != "synthetic")
     {
