@@ -1,0 +1,107 @@
+#include "particleLocator.H"
+#include "parallelSum.H"
+#include "Pstream.H"
+
+namespace Foam
+{
+namespace iceCoupling
+{
+
+particleLocator::particleLocator(const fvMesh& mesh, const fluidFractionModel& model)
+:
+    mesh_(mesh),
+    model_(model)
+{}
+
+
+label particleLocator::findCell(const point& p, label hint) const
+{
+    if (hint >= 0 && mesh_.pointInCell(p, hint, polyMesh::CELL_TETS))
+    {
+        return hint;
+    }
+    return mesh_.findCell(p, polyMesh::CELL_TETS);
+}
+
+
+void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>& particles)
+{
+    const label nParticles = particles.size();
+    const vectorList& offsets = model_.unitOffsets();
+    const scalarList& shares = model_.shares();
+    const label nSamples = offsets.size();
+    const int myRank = Pstream::myProcNo();
+    const int nobody = Pstream::nProcs();
+
+    labelList previous(centreCell_);
+    if (previous.size() != nParticles)
+    {
+        previous.setSize(nParticles, -1);
+    }
+    centreCell_.setSize(nParticles, -1);
+    labelList sampleCell(nParticles*nSamples, -1);
+
+    // One list for one reduction: the centre owner then the sample owners of each particle.
+    std::vector<int> owner(nParticles*(nSamples + 1), nobody);
+    const boundBox localBox(mesh_.points(), false);   // mesh_.bounds() is global
+    for (label i = 0; i < nParticles; ++i)
+    {
+        const point c(particles[i].position[0], particles[i].position[1], particles[i].position[2]);
+        const scalar d = particles[i].diameter;
+        if (!localBox.overlaps(c, sqr(0.5*d)))
+        {
+            continue;
+        }
+        const label cell = findCell(c, previous[i]);
+        if (cell >= 0)
+        {
+            centreCell_[i] = cell;
+            owner[i*(nSamples + 1)] = myRank;
+        }
+        for (label s = 0; s < nSamples; ++s)
+        {
+            const label sc = findCell(c + d*offsets[s], cell);
+            if (sc >= 0)
+            {
+                sampleCell[i*nSamples + s] = sc;
+                owner[i*(nSamples + 1) + 1 + s] = myRank;
+            }
+        }
+    }
+    minOverRanks(owner);
+
+    samples_.clear();
+    for (label i = 0; i < nParticles; ++i)
+    {
+        const int* o = &owner[i*(nSamples + 1)];
+        if (o[0] == nobody)
+        {
+            const auto& p = particles[i];
+            FatalErrorInFunction
+                << "particle " << p.tag << " at (" << p.position[0] << ' ' << p.position[1]
+                << ' ' << p.position[2] << ") is outside the fluid mesh (bounds "
+                << mesh_.bounds() << "): with hydrodynamics"
+                << " level cfd every particle must stay inside the mesh; enlarge the mesh"
+                << " (system/blockMeshDict) or keep the particles in it with walls in the DEM script"
+                << exit(FatalError);
+        }
+        if (o[0] != myRank)
+        {
+            centreCell_[i] = -1;
+        }
+        for (label s = 0; s < nSamples; ++s)
+        {
+            if (o[1 + s] == myRank)
+            {
+                samples_.append(particleSample{i, sampleCell[i*nSamples + s], shares[s]});
+            }
+            else if (o[1 + s] == nobody && o[0] == myRank)
+            {
+                samples_.append(particleSample{i, centreCell_[i], shares[s]});
+            }
+        }
+    }
+}
+
+} // namespace iceCoupling
+} // namespace Foam
