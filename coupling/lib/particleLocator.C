@@ -11,7 +11,12 @@ particleLocator::particleLocator(const fvMesh& mesh, const fluidFractionModel& m
 :
     mesh_(mesh),
     model_(model)
-{}
+{
+    // Built on demand with parallel communication: build them here, on every
+    // rank, since only ranks with particles nearby would ask for them later.
+    mesh_.tetBasePtIs();
+    mesh_.cellTree();
+}
 
 
 label particleLocator::findCell(const point& p, label hint) const
