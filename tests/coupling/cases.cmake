@@ -1,0 +1,18 @@
+# Coupled cases, shortened: the sphere settles to the Schiller-Naumann terminal
+# velocity within 2 % (its Allrun checks), on 1 and on 2 ranks with the same trajectory.
+# It starts at z = 75 mm so that it crosses the ranks' boundary (z = 60 mm) on 2 ranks.
+set(PYTHON /usr/bin/python3)
+foreach(np 1 2)
+  add_test(NAME sphereSettlingSmall_np${np}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runCase.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+            ${COUPLING_WORK}/sphereSettling_np${np} ${np} 0.25
+            constant/couplingProperties:demVariables/z0=0.075)
+  set_tests_properties(sphereSettlingSmall_np${np} PROPERTIES
+    FIXTURES_SETUP settling_np${np} TIMEOUT 300 PROCESSORS ${np}
+    ENVIRONMENT "${FOAM_ENV};OMPI_MCA_mpi_yield_when_idle=1")
+endforeach()
+add_test(NAME sphereSettlingSmall_oneVsTwoRanks
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
+          ${COUPLING_WORK}/sphereSettling_np1 ${COUPLING_WORK}/sphereSettling_np2)
+set_tests_properties(sphereSettlingSmall_oneVsTwoRanks PROPERTIES
+  FIXTURES_REQUIRED "settling_np1;settling_np2")
