@@ -16,3 +16,9 @@ add_test(NAME sphereSettlingSmall_oneVsTwoRanks
           ${COUPLING_WORK}/sphereSettling_np1 ${COUPLING_WORK}/sphereSettling_np2)
 set_tests_properties(sphereSettlingSmall_oneVsTwoRanks PROPERTIES
   FIXTURES_REQUIRED "settling_np1;settling_np2")
+
+# Bad couplingProperties and controlDict entries: a clear message and a non-zero exit.
+add_test(NAME iceFoam_badInput
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+          ${COUPLING_WORK}/badInput $<TARGET_FILE:iceFoam>)
+set_tests_properties(iceFoam_badInput PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
