@@ -35,13 +35,16 @@ IOobject fieldIO(const fvMesh& mesh, const word& name, bool written)
 
 particleFluidCoupling::particleFluidCoupling
 (
-    const fvMesh& mesh, const dictionary& couplingProperties, scalar rho, scalar nu
+    const fvMesh& mesh, const dictionary& couplingProperties, scalar rho, scalar nu,
+    scalar couplingTime
 )
 :
     mesh_(mesh),
     rho_(rho),
     nu_(nu),
     alphaMin_(couplingProperties.getOrDefault<scalar>("alphaMin", 0.3)),
+    addedMassCoefficient_(couplingProperties.getOrDefault<scalar>("addedMassCoefficient", 0)),
+    couplingTime_(couplingTime),
     drag_(dragModel::New(couplingProperties)),
     fraction_(fluidFractionModel::New(couplingProperties)),
     momentum_(momentumCouplingModel::New(couplingProperties)),
@@ -59,8 +62,21 @@ particleFluidCoupling::particleFluidCoupling
                    zeroGradientFvPatchVectorField::typeName),
     totalDrag_(Zero),
     totalPressureForce_(Zero),
+    totalAddedMass_(Zero),
     clampedCells_(0)
 {
+    if (addedMassCoefficient_ < 0)
+    {
+        FatalIOErrorInFunction(couplingProperties)
+            << "entry 'addedMassCoefficient' is " << addedMassCoefficient_
+            << ": it must be >= 0 (0.5 for a sphere, 0 for none)" << exit(FatalIOError);
+    }
+    if (addedMassCoefficient_ > 0 && couplingTime_ <= 0)
+    {
+        FatalErrorInFunction
+            << "added mass needs the coupling time (got " << couplingTime_ << " s)"
+            << exit(FatalError);
+    }
     if (alphaMin_ <= 0 || alphaMin_ >= 1)
     {
         FatalIOErrorInFunction(couplingProperties)
@@ -169,20 +185,32 @@ void particleFluidCoupling::updateForces
 
     forces_.assign(n, {0.0, 0.0, 0.0});
     scalarList K(n);
+    vectorList addedMassForce(n, Zero);
     totalDrag_ = Zero;
     totalPressureForce_ = Zero;
+    totalAddedMass_ = Zero;
+    currentSlip_.resize(n);
     for (label i = 0; i < n; ++i)
     {
         const double* row = &atParticle[width*i];
         const auto& p = particles[i];
-        const vector slip = vector(row[1], row[2], row[3]) - toVector(p.velocity);
+        const vector fluidVelocity(row[1], row[2], row[3]);
+        const vector slip = fluidVelocity - toVector(p.velocity);
         K[i] = drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
         const vector drag = K[i]*slip;
         const vector pressure = -rho_*volumeOf(p)*vector(row[4], row[5], row[6]);
-        const vector total = drag + pressure;
+        addedMassForce[i] = addedMass(p, fluidVelocity, i);
+        const vector total = drag + pressure + addedMassForce[i];
         forces_[i] = {total.x(), total.y(), total.z()};
         totalDrag_ += drag;
         totalPressureForce_ += pressure;
+        totalAddedMass_ += addedMassForce[i];
+    }
+    previousSlip_.swap(currentSlip_);
+    previousTags_.resize(n);
+    for (label i = 0; i < n; ++i)
+    {
+        previousTags_[i] = particles[i].tag;
     }
 
     // The fluid's side: the same K, shared out as the particle's volume is.
@@ -195,7 +223,8 @@ void particleFluidCoupling::updateForces
     {
         const scalar k = s.share*K[s.particle]/(rho_*V[s.cell]);
         Ksl[s.cell] += k;
-        KslUs[s.cell] += k*toVector(particles[s.particle].velocity);
+        KslUs[s.cell] += k*toVector(particles[s.particle].velocity)
+                       - s.share/(rho_*V[s.cell])*addedMassForce[s.particle];
     }
     Ksl_.correctBoundaryConditions();
     KslUs_.correctBoundaryConditions();
@@ -210,7 +239,24 @@ tmp<fvVectorMatrix> particleFluidCoupling::momentumSource(volVectorField& U) con
 }
 
 
-vector particleFluidCoupling::fluidDragTotal() const
+vector particleFluidCoupling::addedMass
+(
+    const ::iceCoupling::CouplingParticle& p, const vector& fluidVelocity, label index
+)
+{
+    currentSlip_[index] = fluidVelocity - toVector(p.velocity);
+    const bool seenBefore =
+        index < label(previousTags_.size()) && previousTags_[index] == p.tag;
+    if (addedMassCoefficient_ == 0 || !seenBefore)
+    {
+        return Zero;
+    }
+    return addedMassCoefficient_*rho_*volumeOf(p)
+          *(currentSlip_[index] - previousSlip_[index])/couplingTime_;
+}
+
+
+vector particleFluidCoupling::fluidExchangeTotal() const
 {
     return rho_*gSum(mesh_.V()*explicitForce_.primitiveField());
 }

@@ -189,13 +189,40 @@ TEST_F(CouplingExchange, dragOnParticlesEqualAndOppositeToDragOnFluid)
             particleFluidCoupling coupling(mesh(), properties(drag, fraction, "semiImplicit"), rho, nu);
             coupling.update(particles, U, gradp);
             const vector onParticles = coupling.totalDrag();
-            const vector onFluid = coupling.fluidDragTotal();
+            const vector onFluid = coupling.fluidExchangeTotal();
             ASSERT_GT(mag(onParticles), 1e-6);
             EXPECT_LT(mag(onParticles + onFluid), 1e-12*mag(onParticles)) << drag << ' ' << fraction
                 << ": particles " << onParticles.x() << ' ' << onParticles.y() << ' ' << onParticles.z()
                 << ", fluid " << onFluid.x() << ' ' << onFluid.y() << ' ' << onFluid.z();
         }
     }
+}
+
+
+TEST_F(CouplingExchange, addedMassOpposesTheParticlesAcceleration)
+{
+    // Still fluid; between two updates (0.01 s apart) the particles' velocity
+    // changes by dv: each feels -C_a rho V dv/dt, and the fluid gets its reaction.
+    std::vector<CouplingParticle> particles = randomParticles(30, 0.03, 0.02, 13);
+    const auto U = vectorField("U", Zero);
+    const auto gradp = vectorField("gradp", Zero);
+    dictionary props(properties("SchillerNaumann", "divided", "semiImplicit"));
+    props.add("addedMassCoefficient", 0.5);
+    const scalar couplingTime = 0.01;
+    particleFluidCoupling coupling(mesh(), props, rho, nu, couplingTime);
+    coupling.update(particles, U, gradp);
+    EXPECT_EQ(mag(coupling.totalAddedMassForce()), 0.0);   // no history yet
+    const vector dv(0.01, -0.02, 0.03);
+    for (auto& p : particles)
+    {
+        for (int k = 0; k < 3; ++k) p.velocity[k] += dv[k];
+    }
+    coupling.update(particles, U, gradp);
+    const scalar V = constant::mathematical::pi/6*pow3(0.03);
+    const vector expected = -0.5*rho*V*dv/couplingTime*scalar(particles.size());
+    EXPECT_LT(mag(coupling.totalAddedMassForce() - expected), 1e-12*mag(expected));
+    const vector onParticles = coupling.totalDrag() + coupling.totalAddedMassForce();
+    EXPECT_LT(mag(onParticles + coupling.fluidExchangeTotal()), 1e-12*mag(onParticles));
 }
 
 

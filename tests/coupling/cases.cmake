@@ -17,6 +17,24 @@ add_test(NAME sphereSettlingSmall_oneVsTwoRanks
 set_tests_properties(sphereSettlingSmall_oneVsTwoRanks PROPERTIES
   FIXTURES_REQUIRED "settling_np1;settling_np2")
 
+# The way to terminal velocity, too: within 2 % of v_t of the ODE at every
+# coupling step, without and with added mass (C_a = 0.5 changes the ODE's
+# velocity by up to 7.6 % of v_t, so each check can fail).
+add_test(NAME sphereSettlingSmall_transient
+  COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/sphereSettling/compareWithOde.py
+          ${COUPLING_WORK}/sphereSettling_np1 --max-deviation 0.02)
+set_tests_properties(sphereSettlingSmall_transient PROPERTIES FIXTURES_REQUIRED settling_np1)
+add_test(NAME sphereSettlingAddedMass
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runCase.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+          ${COUPLING_WORK}/sphereSettlingAddedMass 1 0.25
+          constant/couplingProperties:addedMassCoefficient=0.5)
+set_tests_properties(sphereSettlingAddedMass PROPERTIES
+  FIXTURES_SETUP settlingAddedMass TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+add_test(NAME sphereSettlingAddedMass_transient
+  COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/sphereSettling/compareWithOde.py
+          ${COUPLING_WORK}/sphereSettlingAddedMass --max-deviation 0.02)
+set_tests_properties(sphereSettlingAddedMass_transient PROPERTIES FIXTURES_REQUIRED settlingAddedMass)
+
 # Bad couplingProperties and controlDict entries: a clear message and a non-zero exit.
 add_test(NAME iceFoam_badInput
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling

@@ -126,7 +126,7 @@ int main(int argc, char *argv[])
     Info<< "Coupling every " << interval.demSteps() << " DEM steps (" << interval.time()
         << " s): " << interval.fluidSteps() << " fluid step(s) per coupling step" << nl << endl;
 
-    particleFluidCoupling coupling(mesh, couplingProperties, rho.value(), nu.value());
+    particleFluidCoupling coupling(mesh, couplingProperties, rho.value(), nu.value(), interval.time());
     particleOutput output(runTime, couplingProperties);
 
     auto exchange = [&]()
