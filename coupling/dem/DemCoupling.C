@@ -16,7 +16,7 @@ namespace iceCoupling
 namespace
 {
 
-constexpr int fieldsPerParticle = 8;   // tag, x[3], v[3], diameter
+constexpr int fieldsPerParticle = 9;   // tag, x[3], v[3], diameter, mass
 
 } // namespace
 
@@ -42,6 +42,7 @@ std::vector<CouplingParticle> DemCoupling::gatherAll() const
         local.insert(local.end(), atom.x[i], atom.x[i] + 3);
         local.insert(local.end(), atom.v[i], atom.v[i] + 3);
         local.push_back(2.0*atom.radius[i]);
+        local.push_back(atom.rmass[i]);
     }
 
     MPI_Comm comm = lmp_.communicator();
@@ -63,7 +64,7 @@ std::vector<CouplingParticle> DemCoupling::gatherAll() const
     {
         const double* row = &all[fieldsPerParticle*p];
         particles[p] = {static_cast<long>(row[0]), {row[1], row[2], row[3]},
-                        {row[4], row[5], row[6]}, row[7]};
+                        {row[4], row[5], row[6]}, row[7], row[8]};
     }
     std::sort(particles.begin(), particles.end(),
               [](const CouplingParticle& a, const CouplingParticle& b) { return a.tag < b.tag; });
@@ -82,10 +83,30 @@ void DemCoupling::setForces
     {
         maxTag = std::max(maxTag, p.tag);
     }
+    std::vector<std::array<double, 3>> previous(std::move(forceOfTag_));
     forceOfTag_.assign(maxTag + 1, {0.0, 0.0, 0.0});
     for (std::size_t p = 0; p < particles.size(); ++p)
     {
         forceOfTag_[particles[p].tag] = forces[p];
+    }
+
+    // Velocity Verlet starts the next step with a half kick from the force
+    // array of the last one, which holds the old fluid force: swap it for the
+    // new one, or each coupling interval would get half a DEM step of the
+    // previous interval's force (momentum the fluid never gave).
+    if (started_)
+    {
+        LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+        for (int i = 0; i < atom.nlocal; ++i)
+        {
+            const long tag = atom.tag[i];
+            for (int k = 0; k < 3; ++k)
+            {
+                const double old = tag < static_cast<long>(previous.size()) ? previous[tag][k] : 0.0;
+                const double now = tag < static_cast<long>(forceOfTag_.size()) ? forceOfTag_[tag][k] : 0.0;
+                atom.f[i][k] += now - old;
+            }
+        }
     }
 }
 

@@ -45,6 +45,7 @@ particleFluidCoupling::particleFluidCoupling
     alphaMin_(couplingProperties.getOrDefault<scalar>("alphaMin", 0.3)),
     addedMassCoefficient_(couplingProperties.getOrDefault<scalar>("addedMassCoefficient", 0)),
     couplingTime_(couplingTime),
+    stabilityCheck_(couplingProperties.getOrDefault<bool>("stabilityCheck", true)),
     drag_(dragModel::New(couplingProperties)),
     fraction_(fluidFractionModel::New(couplingProperties)),
     momentum_(momentumCouplingModel::New(couplingProperties)),
@@ -99,8 +100,8 @@ void particleFluidCoupling::update
     const volVectorField& gradp
 )
 {
-    locator_.locate(particles);
     updateFluidFraction(particles);
+    updateExchange(particles, U);
     updateForces(particles, U, gradp);
 }
 
@@ -110,6 +111,7 @@ void particleFluidCoupling::updateFluidFraction
     const std::vector<::iceCoupling::CouplingParticle>& particles
 )
 {
+    locator_.locate(particles);
     const scalarField& V = mesh_.V();
     scalarField solid(mesh_.nCells(), 0);
     vectorField solidMomentum(mesh_.nCells(), Zero);
@@ -159,72 +161,71 @@ void particleFluidCoupling::updateFluidFraction
 }
 
 
-void particleFluidCoupling::updateForces
+std::vector<double> particleFluidCoupling::atParticles
 (
-    const std::vector<::iceCoupling::CouplingParticle>& particles,
-    const volVectorField& U,
-    const volVectorField& gradp
-)
+    label nParticles, const volVectorField& field, bool withAlpha
+) const
 {
-    // Fluid fraction, velocity and pressure gradient at each particle: its
-    // samples' cells, share-weighted, summed over the ranks that hold them.
-    constexpr int width = 7;
-    const label n = particles.size();
-    std::vector<double> atParticle(width*n, 0.0);
+    // Share-weighted over each particle's samples' cells, summed over the
+    // ranks that hold them: (alpha,) then the field's three components.
+    const int width = withAlpha ? 4 : 3;
+    std::vector<double> values(width*nParticles, 0.0);
     for (const particleSample& s : locator_.samples())
     {
-        double* row = &atParticle[width*s.particle];
-        row[0] += s.share*alpha_[s.cell];
+        double* row = &values[width*s.particle];
+        if (withAlpha)
+        {
+            *row++ += s.share*alpha_[s.cell];
+        }
         for (direction k = 0; k < 3; ++k)
         {
-            row[1 + k] += s.share*U[s.cell][k];
-            row[4 + k] += s.share*gradp[s.cell][k];
+            row[k] += s.share*field[s.cell][k];
         }
     }
-    sumOverRanks(atParticle);
+    sumOverRanks(values);
+    return values;
+}
 
-    forces_.assign(n, {0.0, 0.0, 0.0});
-    scalarList K(n);
-    vectorList addedMassForce(n, Zero);
-    totalDrag_ = Zero;
-    totalPressureForce_ = Zero;
-    totalAddedMass_ = Zero;
-    currentSlip_.resize(n);
+
+void particleFluidCoupling::updateExchange
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const volVectorField& U
+)
+{
+    const label n = particles.size();
+    const std::vector<double> atParticle(atParticles(n, U, true));
+    K_.setSize(n);
+    exchangeFluidVelocity_.setSize(n);
+    std::vector<double> alphaAtParticle(n);
     for (label i = 0; i < n; ++i)
     {
-        const double* row = &atParticle[width*i];
+        const double* row = &atParticle[4*i];
         const auto& p = particles[i];
-        const vector fluidVelocity(row[1], row[2], row[3]);
-        const vector slip = fluidVelocity - toVector(p.velocity);
-        K[i] = drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
-        const vector drag = K[i]*slip;
-        const vector pressure = -rho_*volumeOf(p)*vector(row[4], row[5], row[6]);
-        addedMassForce[i] = addedMass(p, fluidVelocity, i);
-        const vector total = drag + pressure + addedMassForce[i];
-        forces_[i] = {total.x(), total.y(), total.z()};
-        totalDrag_ += drag;
-        totalPressureForce_ += pressure;
-        totalAddedMass_ += addedMassForce[i];
+        alphaAtParticle[i] = row[0];
+        exchangeFluidVelocity_[i] = vector(row[1], row[2], row[3]);
+        const vector slip = exchangeFluidVelocity_[i] - toVector(p.velocity);
+        K_[i] = drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
     }
-    previousSlip_.swap(currentSlip_);
-    previousTags_.resize(n);
-    for (label i = 0; i < n; ++i)
-    {
-        previousTags_[i] = particles[i].tag;
-    }
+    checkStability(particles, alphaAtParticle);
 
-    // The fluid's side: the same K, shared out as the particle's volume is.
+    // The fluid's side: the same K, shared out as the particle's volume is,
+    // and the reaction to the added mass of the last interval.
     const scalarField& V = mesh_.V();
     scalarField& Ksl = Ksl_.primitiveFieldRef();
     vectorField& KslUs = KslUs_.primitiveFieldRef();
     Ksl = 0;
     KslUs = Zero;
+    const bool addedMassKnown = addedMassForce_.size() == n;
     for (const particleSample& s : locator_.samples())
     {
-        const scalar k = s.share*K[s.particle]/(rho_*V[s.cell]);
+        const scalar k = s.share*K_[s.particle]/(rho_*V[s.cell]);
         Ksl[s.cell] += k;
-        KslUs[s.cell] += k*toVector(particles[s.particle].velocity)
-                       - s.share/(rho_*V[s.cell])*addedMassForce[s.particle];
+        KslUs[s.cell] += k*toVector(particles[s.particle].velocity);
+        if (addedMassKnown)
+        {
+            KslUs[s.cell] -= s.share/(rho_*V[s.cell])*addedMassForce_[s.particle];
+        }
     }
     Ksl_.correctBoundaryConditions();
     KslUs_.correctBoundaryConditions();
@@ -233,9 +234,111 @@ void particleFluidCoupling::updateForces
 }
 
 
+void particleFluidCoupling::updateForces
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const volVectorField& U,
+    const volVectorField& gradp
+)
+{
+    const label n = particles.size();
+    if (K_.size() != n)
+    {
+        FatalErrorInFunction
+            << "updateForces for " << n << " particles after updateExchange for " << K_.size()
+            << abort(FatalError);
+    }
+    const std::vector<double> fluidVelocity(atParticles(n, U, false));
+    const std::vector<double> pressureGradient(atParticles(n, gradp, false));
+
+    forces_.assign(n, {0.0, 0.0, 0.0});
+    addedMassForce_.setSize(n);
+    totalDrag_ = Zero;
+    totalPressureForce_ = Zero;
+    totalAddedMass_ = Zero;
+    currentSlip_.resize(n);
+    for (label i = 0; i < n; ++i)
+    {
+        const auto& p = particles[i];
+        // The fluid velocity the fluid's own share of the drag was solved
+        // with: the new one where it is implicit, the frozen one where explicit.
+        const vector Uf =
+            momentum_->implicitInFluid()
+          ? vector(fluidVelocity[3*i], fluidVelocity[3*i + 1], fluidVelocity[3*i + 2])
+          : exchangeFluidVelocity_[i];
+        const vector drag = K_[i]*(Uf - toVector(p.velocity));
+        const vector pressure = -rho_*volumeOf(p)
+            *vector(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
+        addedMassForce_[i] = addedMass(p, Uf, i);
+        const vector total = drag + pressure + addedMassForce_[i];
+        forces_[i] = {total.x(), total.y(), total.z()};
+        totalDrag_ += drag;
+        totalPressureForce_ += pressure;
+        totalAddedMass_ += addedMassForce_[i];
+    }
+    previousSlip_.swap(currentSlip_);
+    previousTags_.resize(n);
+    for (label i = 0; i < n; ++i)
+    {
+        previousTags_[i] = particles[i].tag;
+    }
+}
+
+
 tmp<fvVectorMatrix> particleFluidCoupling::momentumSource(volVectorField& U) const
 {
     return momentum_->source(Ksl_, KslUs_, explicitForce_, U);
+}
+
+
+void particleFluidCoupling::checkStability
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const std::vector<double>& alphaAtParticle
+) const
+{
+    if (!stabilityCheck_ || couplingTime_ <= 0)
+    {
+        return;
+    }
+    label worst = -1;
+    scalar worstFactor = 1;
+    scalar worstA = 0, worstB = 0;
+    forAll(K_, i)
+    {
+        const auto& p = particles[i];
+        if (p.mass <= 0)
+        {
+            continue;
+        }
+        const scalar alpha = alphaAtParticle[i];
+        const scalar a = K_[i]/p.mass;
+        const scalar b = K_[i]*(1 - alpha)/(alpha*rho_*volumeOf(p));
+        const scalar factor = mag(momentum_->slipGrowthFactor(couplingTime_, a, b));
+        if (factor > worstFactor)
+        {
+            worst = i;
+            worstFactor = factor;
+            worstA = a;
+            worstB = b;
+        }
+    }
+    if (worst >= 0)
+    {
+        FatalErrorInFunction
+            << "the drag exchange is unstable with momentumCoupling "
+            << momentum_->type() << " and a coupling time of " << couplingTime_ << " s: particle "
+            << particles[worst].tag << " (fluid fraction " << alphaAtParticle[worst]
+            << ", drag relaxation rate " << worstA << " 1/s, fluid's " << worstB
+            << " 1/s) would see its slip velocity multiplied by " << worstFactor
+            << " every coupling step. Stable up to a coupling time of "
+            << momentum_->stableCouplingTime(worstA, worstB) << " s with " << momentum_->type()
+            << (momentum_->type() == "explicit"
+                ? word(" (semiImplicit allows more)") : word(""))
+            << ": lower couplingInterval (constant/couplingProperties) and deltaT"
+            << " (system/controlDict), or set stabilityCheck no to run it anyway"
+            << exit(FatalError);
+    }
 }
 
 
@@ -256,8 +359,12 @@ vector particleFluidCoupling::addedMass
 }
 
 
-vector particleFluidCoupling::fluidExchangeTotal() const
+vector particleFluidCoupling::fluidExchangeTotal(const volVectorField& U) const
 {
+    if (momentum_->implicitInFluid())
+    {
+        return rho_*gSum(mesh_.V()*(KslUs_.primitiveField() - Ksl_.primitiveField()*U.primitiveField()));
+    }
     return rho_*gSum(mesh_.V()*explicitForce_.primitiveField());
 }
 

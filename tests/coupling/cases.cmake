@@ -40,3 +40,10 @@ add_test(NAME iceFoam_badInput
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
           ${COUPLING_WORK}/badInput $<TARGET_FILE:iceFoam>)
 set_tests_properties(iceFoam_badInput PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+
+# Light particles (ice): explicit drag exchange diverges where the semi-implicit
+# one relaxes, the stability check refuses it, and momentum is conserved.
+add_test(NAME lightCloud_stabilityAndMomentum
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/lightCloudStability.py
+          ${CMAKE_CURRENT_SOURCE_DIR}/lightCloud ${COUPLING_WORK}/lightCloud $<TARGET_FILE:iceFoam>)
+set_tests_properties(lightCloud_stabilityAndMomentum PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")

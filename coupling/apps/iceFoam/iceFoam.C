@@ -14,12 +14,24 @@ Description
         ddt(alpha U) + div(alpha U U) - div(alpha nu grad U)
             = -alpha grad(p_rgh) + Ksl (Us - U)
 
-    Per coupling step (docs/architecture.md): LIGGGHTS advances
-    couplingInterval steps with the last forces; the particles are located,
-    alpha and Us updated, the forces computed and sent to LIGGGHTS; then the
-    fluid advances the coupling time in a whole number of its steps.
-    Before the first step the forces of the initial state are computed, so that
-    the first DEM interval feels buoyancy too.
+    Per coupling step, from a state where both codes are at time t, the
+    particles located and the drag coefficients K computed from their slip:
+      1. the fluid advances to t + T_c (a whole number of its steps) with
+         its share of the drag, -Ksl (U - Us) implicit in U (semiImplicit) or
+         frozen at t (explicit);
+      2. the particle forces for the same interval are computed with the same
+         K and the fluid velocity the fluid solved with (the new one for
+         semiImplicit, the frozen one for explicit) and the new grad(p):
+         each particle gets exactly the momentum the fluid gave up;
+      3. LIGGGHTS advances couplingInterval steps with them; the particles are
+         located, alpha, Us and K updated.
+    docs/architecture.md lists DEM first, then the exchange, then the fluid;
+    that order gives the fluid the exchange one interval before the particles
+    get it and, semi-implicit, lets fluid and particles see different fluid
+    velocities, which lost up to 40 % of the momentum in a test (cases in
+    tests/coupling/lightCloud); this order is conservative and its
+    semi-implicit form is stable for any coupling time when b >= a (see
+    momentumCouplingModel::slipGrowthFactor).
 
     Input: constant/couplingProperties, constant/transportProperties (rho, nu),
     constant/g, 0/U, 0/p_rgh, the DEM script it names.
@@ -129,30 +141,21 @@ int main(int argc, char *argv[])
     particleFluidCoupling coupling(mesh, couplingProperties, rho.value(), nu.value(), interval.time());
     particleOutput output(runTime, couplingProperties);
 
-    auto exchange = [&]()
-    {
-        const std::vector<::iceCoupling::CouplingParticle> particles(dem.gatherAll());
-        const volVectorField gradp("gradp", fvc::grad(p_rgh) + g);
-        coupling.update(particles, U, gradp);
-        dem.setForces(particles, coupling.particleForces());
-        output.coupling(lmp.time(), coupling, particles);   // the particles' time
-        return particles;
-    };
-    exchange();
+    std::vector<::iceCoupling::CouplingParticle> particles(dem.gatherAll());
+    coupling.updateFluidFraction(particles);
+    coupling.updateExchange(particles, U);
     alpha = coupling.alpha();
     alpha.oldTime();
 
     Info<< "\nStarting time loop\n" << endl;
     while (runTime.run())
     {
-        dem.advance(interval.demSteps());
-        const auto particles = exchange();
-
+        // 1. The fluid crosses the coupling time with the exchange made at its start.
         for (label sub = 0; sub < interval.fluidSteps(); ++sub)
         {
             ++runTime;
             Info<< "Time = " << runTime.timeName() << nl << endl;
-            // The new particle positions count from this step on; ddt(alpha)
+            // The fluid fraction of the particles' latest positions; ddt(alpha)
             // feeds continuity at the first fluid step of the coupling step.
             alpha = coupling.alpha();
             #include "CourantNo.H"
@@ -162,12 +165,25 @@ int main(int argc, char *argv[])
                 #include "pEqn.H"
             }
             p = p_rgh + gh;
-            if (runTime.writeTime())
-            {
-                output.particlesVtk(runTime, particles);
-            }
             runTime.write();
             runTime.printExecutionTime(Info);
+        }
+
+        // 2. The particles get the same momentum over the same time, and the
+        //    fluid's new pressure gradient.
+        const volVectorField gradp("gradp", fvc::grad(p_rgh) + g);
+        coupling.updateForces(particles, U, gradp);
+        dem.setForces(particles, coupling.particleForces());
+        output.coupling(lmp.time(), coupling, particles);
+
+        // 3. LIGGGHTS crosses it; the next exchange starts from where both are.
+        dem.advance(interval.demSteps());
+        particles = dem.gatherAll();
+        coupling.updateFluidFraction(particles);
+        coupling.updateExchange(particles, U);
+        if (runTime.writeTime())
+        {
+            output.particlesVtk(runTime, particles);
         }
     }
 

@@ -33,6 +33,41 @@ autoPtr<momentumCouplingModel> momentumCouplingModel::New(const dictionary& coup
 }
 
 
+scalar momentumCouplingModel::stableCouplingTime(scalar a, scalar b) const
+{
+    // Both factors fall with dt from 1: bisect on the first dt where the
+    // factor reaches -1 (the upper end doubles until it is unstable, or gives
+    // up at 1e6 s where the scheme is unconditionally stable).
+    scalar lo = 0, hi = 1/(a + b);
+    while (mag(slipGrowthFactor(hi, a, b)) <= 1)
+    {
+        hi *= 2;
+        if (hi > 1e6)
+        {
+            return GREAT;
+        }
+    }
+    for (int i = 0; i < 60; ++i)
+    {
+        const scalar mid = 0.5*(lo + hi);
+        (mag(slipGrowthFactor(mid, a, b)) <= 1 ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+
+scalar explicitCoupling::slipGrowthFactor(scalar dt, scalar a, scalar b) const
+{
+    return 1 - dt*(a + b);
+}
+
+
+scalar semiImplicitCoupling::slipGrowthFactor(scalar dt, scalar a, scalar b) const
+{
+    return (1 - dt*a)/(1 + dt*b);
+}
+
+
 tmp<fvVectorMatrix> explicitCoupling::source
 (
     const volScalarField&, const volVectorField&,
