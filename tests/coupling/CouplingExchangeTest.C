@@ -118,13 +118,15 @@ TEST_F(CouplingExchange, fluidFractionConservesParticleVolume)
     const auto particles = randomParticles(200, 0.04, 0.005, 7);
     const auto U = vectorField("U", Zero);
     const auto gradp = vectorField("gradp", Zero);
-    for (const word fraction : {"centre", "divided"})
+    for (const label points : {1, 4, 9})   // 1: centre; divided with 4 and 9 points across
     {
-        particleFluidCoupling coupling(mesh(), properties("DiFelice", fraction, "semiImplicit"), rho, nu);
+        dictionary props(properties("DiFelice", points == 1 ? "centre" : "divided", "semiImplicit"));
+        props.add("dividedPointsPerDiameter", points == 1 ? 4 : points);
+        particleFluidCoupling coupling(mesh(), props, rho, nu);
         coupling.update(particles, U, gradp);
         EXPECT_EQ(coupling.clampedCells(), 0);
         const scalar solid = gSum((1 - coupling.alpha().primitiveField())*mesh().V());
-        EXPECT_NEAR(solid/totalVolume(particles), 1.0, 1e-12) << fraction;
+        EXPECT_NEAR(solid/totalVolume(particles), 1.0, 1e-12) << points << " points across";
     }
 }
 

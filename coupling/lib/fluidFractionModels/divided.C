@@ -11,9 +11,21 @@ defineTypeNameAndDebug(divided, 0);
 addToRunTimeSelectionTable(fluidFractionModel, divided, dictionary);
 
 
-divided::divided(const dictionary&)
+divided::divided(const dictionary& couplingProperties)
 {
-    const scalar axis[4] = {-0.375, -0.125, 0.125, 0.375};
+    const label n = couplingProperties.getOrDefault<label>("dividedPointsPerDiameter", 4);
+    if (n < 2 || n > 20)
+    {
+        FatalIOErrorInFunction(couplingProperties)
+            << "entry 'dividedPointsPerDiameter' is " << n
+            << ": the lattice of sample points needs 2 to 20 points across a diameter"
+            << exit(FatalIOError);
+    }
+    scalarList axis(n);
+    forAll(axis, i)
+    {
+        axis[i] = (i + 0.5)/n - 0.5;
+    }
     DynamicList<vector> inside;
     for (const scalar x : axis)
     {
