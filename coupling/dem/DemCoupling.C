@@ -4,6 +4,7 @@
 
 #include "lammps.h"
 #include "atom.h"
+#include "domain.h"
 #include "fix_external.h"
 
 #include <mpi.h>
@@ -39,7 +40,11 @@ std::vector<CouplingParticle> DemCoupling::gatherAll() const
     for (int i = 0; i < nlocal; ++i)
     {
         local.push_back(atom.tag[i]);
-        local.insert(local.end(), atom.x[i], atom.x[i] + 3);
+        // LIGGGHTS wraps atoms across periodic boundaries only when it
+        // re-neighbours; the fluid mesh needs the position inside the box.
+        double x[3] = {atom.x[i][0], atom.x[i][1], atom.x[i][2]};
+        lmp_.engine().domain->remap(x);
+        local.insert(local.end(), x, x + 3);
         local.insert(local.end(), atom.v[i], atom.v[i] + 3);
         local.push_back(2.0*atom.radius[i]);
         local.push_back(atom.rmass[i]);

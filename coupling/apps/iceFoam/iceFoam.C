@@ -29,9 +29,8 @@ Description
     that order gives the fluid the exchange one interval before the particles
     get it and, semi-implicit, lets fluid and particles see different fluid
     velocities, which lost up to 40 % of the momentum in a test (cases in
-    tests/coupling/lightCloud); this order is conservative and its
-    semi-implicit form is stable for any coupling time when b >= a (see
-    momentumCouplingModel::slipGrowthFactor).
+    tests/coupling/lightCloud); this order is conservative to round-off.
+    Stability limits: momentumCouplingModel::slipGrowthFactor.
 
     Input: constant/couplingProperties, constant/transportProperties (rho, nu),
     constant/g, 0/U, 0/p_rgh, the DEM script it names.

@@ -62,9 +62,9 @@ scalar explicitCoupling::slipGrowthFactor(scalar dt, scalar a, scalar b) const
 }
 
 
-scalar semiImplicitCoupling::slipGrowthFactor(scalar dt, scalar a, scalar b) const
+scalar semiImplicitCoupling::slipGrowthFactor(scalar dt, scalar a, scalar) const
 {
-    return (1 - dt*a)/(1 + dt*b);
+    return 1 - dt*a;
 }
 
 
