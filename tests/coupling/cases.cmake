@@ -47,3 +47,18 @@ add_test(NAME lightCloud_stabilityAndMomentum
   COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/lightCloudStability.py
           ${CMAKE_CURRENT_SOURCE_DIR}/lightCloud ${COUPLING_WORK}/lightCloud $<TARGET_FILE:iceFoam>)
 set_tests_properties(lightCloud_stabilityAndMomentum PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+
+# 1,728 particles in the periodic light cloud, moving across the boundary between
+# the ranks and through the periodic faces: 1 and 2 ranks, same trajectories.
+foreach(np 1 2)
+  add_test(NAME lightCloud_np${np}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceFoam>
+            ${CMAKE_CURRENT_SOURCE_DIR}/lightCloud ${COUPLING_WORK}/lightCloud_np${np} ${np}
+            system/controlDict:endTime=1.12)
+  set_tests_properties(lightCloud_np${np} PROPERTIES
+    FIXTURES_SETUP cloud_np${np} TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${FOAM_ENV}")
+endforeach()
+add_test(NAME lightCloud_oneVsTwoRanks
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
+          ${COUPLING_WORK}/lightCloud_np1 ${COUPLING_WORK}/lightCloud_np2)
+set_tests_properties(lightCloud_oneVsTwoRanks PROPERTIES FIXTURES_REQUIRED "cloud_np1;cloud_np2")

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Same particle trajectories from two runs (1 and 2 ranks): every logged
 position and velocity agree within --tolerance, relative to the largest
-displacement and speed of the run. Usage: compareTrajectories.py CASE_A CASE_B"""
+displacement and speed of the run. Particles are matched by their initial
+positions (LIGGGHTS numbers atoms it creates in an order that depends on the
+decomposition). Usage: compareTrajectories.py CASE_A CASE_B [--tolerance T]"""
 import argparse
 import csv
 import os
@@ -9,8 +11,14 @@ import sys
 
 
 def load(case):
+    """Rows sorted by time, then by the particle's initial position."""
     with open(os.path.join(case, "postProcessing", "particles.csv")) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    t0 = rows[0]["time"]
+    start = {r["tag"]: (round(r["x"], 9), round(r["y"], 9), round(r["z"], 9)) for r in rows if r["time"] == t0}
+    # The first coupling step may be logged twice at t0; keep the last of each (time, tag).
+    unique = {(r["time"], r["tag"]): r for r in rows}
+    return sorted(unique.values(), key=lambda r: (r["time"], start[r["tag"]]))
 
 
 def main():
@@ -24,6 +32,9 @@ def main():
         print(f"FAIL: {len(a)} and {len(b)} trajectory rows")
         return 1
     start = {r["tag"]: r for r in a if r["time"] == a[0]["time"]}
+    if any(abs(ra["time"] - rb["time"]) > 1e-12 for ra, rb in zip(a, b)):
+        print("FAIL: the runs logged different times")
+        return 1
     travel = max(abs(r[k] - start[r["tag"]][k]) for r in a for k in "xyz")
     speed = max(abs(r[k]) for r in a for k in ("vx", "vy", "vz"))
     dx = max(abs(ra[k] - rb[k]) for ra, rb in zip(a, b) for k in "xyz")
