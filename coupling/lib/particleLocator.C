@@ -29,6 +29,41 @@ label particleLocator::findCell(const point& p, label hint) const
 }
 
 
+scalar particleLocator::clearance(const point& p, label cell) const
+{
+    scalar nearest = GREAT;
+    for (const label facei : mesh_.cells()[cell])
+    {
+        // Face normals point out of their owner.
+        const vector outward =
+            (mesh_.faceOwner()[facei] == cell ? 1 : -1)*mesh_.faceAreas()[facei]
+           /mag(mesh_.faceAreas()[facei]);
+        nearest = min(nearest, (mesh_.faceCentres()[facei] - p) & outward);
+    }
+    return nearest;
+}
+
+
+label particleLocator::sampleCell(const point& p, label centreCell) const
+{
+    if (centreCell >= 0)
+    {
+        if (mesh_.pointInCell(p, centreCell, polyMesh::FACE_PLANES))
+        {
+            return centreCell;
+        }
+        for (const label neighbour : mesh_.cellCells()[centreCell])
+        {
+            if (mesh_.pointInCell(p, neighbour, polyMesh::FACE_PLANES))
+            {
+                return neighbour;
+            }
+        }
+    }
+    return mesh_.findCell(p, polyMesh::CELL_TETS);
+}
+
+
 void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>& particles)
 {
     const label nParticles = particles.size();
@@ -44,7 +79,7 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
         previous.setSize(nParticles, -1);
     }
     centreCell_.setSize(nParticles, -1);
-    labelList sampleCell(nParticles*nSamples, -1);
+    labelList cellOfSample(nParticles*nSamples, -1);
 
     // One list for one reduction: the centre owner then the sample owners of each particle.
     std::vector<int> owner(nParticles*(nSamples + 1), nobody);
@@ -63,12 +98,14 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
             centreCell_[i] = cell;
             owner[i*(nSamples + 1)] = myRank;
         }
+        // Most particles lie wholly inside their cell: no sample search.
+        const bool inside = cell >= 0 && clearance(c, cell) >= 0.5*d;
         for (label s = 0; s < nSamples; ++s)
         {
-            const label sc = findCell(c + d*offsets[s], cell);
+            const label sc = inside ? cell : sampleCell(c + d*offsets[s], cell);
             if (sc >= 0)
             {
-                sampleCell[i*nSamples + s] = sc;
+                cellOfSample[i*nSamples + s] = sc;
                 owner[i*(nSamples + 1) + 1 + s] = myRank;
             }
         }
@@ -98,7 +135,7 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
         {
             if (o[1 + s] == myRank)
             {
-                samples_.append(particleSample{i, sampleCell[i*nSamples + s], shares[s]});
+                samples_.append(particleSample{i, cellOfSample[i*nSamples + s], shares[s]});
             }
             else if (o[1 + s] == nobody && o[0] == myRank)
             {
