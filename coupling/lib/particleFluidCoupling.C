@@ -50,6 +50,7 @@ particleFluidCoupling::particleFluidCoupling
     fraction_(fluidFractionModel::New(couplingProperties)),
     momentum_(momentumCouplingModel::New(couplingProperties)),
     locator_(mesh, fraction_()),
+    surface_(mesh, couplingProperties),
     alpha_(fieldIO(mesh, "alpha", true), mesh, dimensionedScalar("one", dimless, 1.0),
            zeroGradientFvPatchScalarField::typeName),
     Us_(fieldIO(mesh, "Us", true), mesh, dimensionedVector("zero", dimVelocity, Zero),
@@ -111,14 +112,29 @@ void particleFluidCoupling::updateFluidFraction
     const std::vector<::iceCoupling::CouplingParticle>& particles
 )
 {
-    locator_.locate(particles);
+    wetFraction_.setSize(particles.size());
+    if (surface_.active())
+    {
+        std::vector<::iceCoupling::CouplingParticle> inWater(particles.size());
+        forAll(wetFraction_, i)
+        {
+            wetFraction_[i] = surface_.submergedFraction(particles[i]);
+            inWater[i] = surface_.inWater(particles[i]);
+        }
+        locator_.locate(inWater);
+    }
+    else
+    {
+        wetFraction_ = 1;
+        locator_.locate(particles);
+    }
     const scalarField& V = mesh_.V();
     scalarField solid(mesh_.nCells(), 0);
     vectorField solidMomentum(mesh_.nCells(), Zero);
     for (const particleSample& s : locator_.samples())
     {
         const auto& p = particles[s.particle];
-        const scalar share = s.share*volumeOf(p);
+        const scalar share = s.share*wetFraction_[s.particle]*volumeOf(p);
         if (fraction_->lumped() && share > (1 - alphaMin_)*V[s.cell])
         {
             FatalErrorInFunction
@@ -205,7 +221,7 @@ void particleFluidCoupling::updateExchange
         alphaAtParticle[i] = row[0];
         exchangeFluidVelocity_[i] = vector(row[1], row[2], row[3]);
         const vector slip = exchangeFluidVelocity_[i] - toVector(p.velocity);
-        K_[i] = drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
+        K_[i] = wetFraction_[i]*drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
     }
     checkStability(particles, alphaAtParticle);
 
@@ -267,7 +283,7 @@ void particleFluidCoupling::updateForces
           ? vector(fluidVelocity[3*i], fluidVelocity[3*i + 1], fluidVelocity[3*i + 2])
           : exchangeFluidVelocity_[i];
         const vector drag = K_[i]*(Uf - toVector(p.velocity));
-        const vector pressure = -rho_*volumeOf(p)
+        const vector pressure = -rho_*wetFraction_[i]*volumeOf(p)
             *vector(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
         addedMassForce_[i] = addedMass(p, Uf, i);
         const vector total = drag + pressure + addedMassForce_[i];
@@ -313,7 +329,11 @@ void particleFluidCoupling::checkStability
         }
         const scalar alpha = alphaAtParticle[i];
         const scalar a = K_[i]/p.mass;
-        const scalar b = K_[i]*(1 - alpha)/(alpha*rho_*volumeOf(p));
+        if (K_[i] <= 0)
+        {
+            continue;   // out of the water
+        }
+        const scalar b = K_[i]*(1 - alpha)/(alpha*rho_*wetFraction_[i]*volumeOf(p));
         const scalar factor = mag(momentum_->slipGrowthFactor(couplingTime_, a, b));
         if (factor > worstFactor)
         {
@@ -354,7 +374,7 @@ vector particleFluidCoupling::addedMass
     {
         return Zero;
     }
-    return addedMassCoefficient_*rho_*volumeOf(p)
+    return addedMassCoefficient_*rho_*wetFraction_[index]*volumeOf(p)
           *(currentSlip_[index] - previousSlip_[index])/couplingTime_;
 }
 

@@ -333,6 +333,47 @@ TEST_F(CouplingExchange, unknownSubmodelNamesRefused)
 }
 
 
+TEST_F(CouplingExchange, waterSurfaceGivesBuoyancyOfTheSubmergedCap)
+{
+    // Surface at the top of the box (z = 0.4 m); still water (grad p = g).
+    // Centre at the surface: half the volume; 5 mm below with r = 10 mm: a cap
+    // of height h = 15 mm, V_sub = pi h^2 (3r - h)/3; above by 20 mm: nothing.
+    dictionary props(properties("SchillerNaumann", "centre", "semiImplicit"));
+    props.add("waterLevel", 0.4);
+    const scalar r = 0.01;
+    const std::vector<CouplingParticle> particles
+    {
+        {1, {0.05, 0.05, 0.4}, {0, 0, 0}, 2*r},
+        {2, {0.15, 0.05, 0.395}, {0, 0, 0}, 2*r},
+        {3, {0.25, 0.05, 0.42}, {0, 0, 0}, 2*r},
+        {4, {0.35, 0.05, 0.2}, {0, 0, 0}, 2*r}
+    };
+    const auto U = vectorField("U", Zero);
+    const auto gradp = vectorField("gradp", vector(0, 0, -9.81));
+    particleFluidCoupling coupling(mesh(), props, rho, nu);
+    coupling.update(particles, U, gradp);
+    const scalar V = 4.0/3*constant::mathematical::pi*pow3(r);
+    const scalar h = 0.015;
+    const scalar cap = constant::mathematical::pi*sqr(h)*(3*r - h)/3;
+    const scalar expected[4] = {0.5*V, cap, 0, V};
+    for (int i = 0; i < 4; ++i)
+    {
+        EXPECT_NEAR(coupling.particleForces()[i][2], rho*9.81*expected[i], 1e-12) << "particle " << i + 1;
+    }
+    // The fluid gets the submerged volumes.
+    const scalar solid = gSum((1 - coupling.alpha().primitiveField())*mesh().V());
+    EXPECT_NEAR(solid, 0.5*V + cap + V, 1e-15);
+}
+
+
+TEST_F(CouplingExchange, waterLevelBelowTheMeshTopRefused)
+{
+    dictionary props(properties("SchillerNaumann", "centre", "semiImplicit"));
+    props.add("waterLevel", 0.3);
+    expectFatal([&] { particleFluidCoupling(mesh(), props, rho, nu); }, "must end at the water surface");
+}
+
+
 TEST(CouplingInterval, fluidStepDividingTheCouplingTimeAccepted)
 {
     dictionary dict;

@@ -62,3 +62,13 @@ add_test(NAME lightCloud_oneVsTwoRanks
   COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
           ${COUPLING_WORK}/lightCloud_np1 ${COUPLING_WORK}/lightCloud_np2)
 set_tests_properties(lightCloud_oneVsTwoRanks PROPERTIES FIXTURES_REQUIRED "cloud_np1;cloud_np2")
+
+# Floating ice at the water surface (waterLevel): the draft of a sphere.
+add_test(NAME floatingSphere_run
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceFoam>
+          ${CMAKE_CURRENT_SOURCE_DIR}/floatingSphere ${COUPLING_WORK}/floatingSphere 1)
+set_tests_properties(floatingSphere_run PROPERTIES
+  FIXTURES_SETUP floating TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+add_test(NAME floatingSphere_draft
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/checkFloating.py ${COUPLING_WORK}/floatingSphere)
+set_tests_properties(floatingSphere_draft PROPERTIES FIXTURES_REQUIRED floating)
