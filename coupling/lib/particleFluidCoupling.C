@@ -1,0 +1,392 @@
+#include "particleFluidCoupling.H"
+#include "parallelSum.H"
+#include "zeroGradientFvPatchFields.H"
+#include "mathematicalConstants.H"
+
+namespace Foam
+{
+namespace iceCoupling
+{
+
+namespace
+{
+
+scalar volumeOf(const ::iceCoupling::CouplingParticle& p)
+{
+    return constant::mathematical::pi/6.0*pow3(p.diameter);
+}
+
+vector toVector(const std::array<double, 3>& a)
+{
+    return vector(a[0], a[1], a[2]);
+}
+
+IOobject fieldIO(const fvMesh& mesh, const word& name, bool written)
+{
+    return IOobject
+    (
+        name, mesh.time().timeName(), mesh, IOobject::NO_READ,
+        written ? IOobject::AUTO_WRITE : IOobject::NO_WRITE
+    );
+}
+
+} // namespace
+
+
+particleFluidCoupling::particleFluidCoupling
+(
+    const fvMesh& mesh, const dictionary& couplingProperties, scalar rho, scalar nu,
+    scalar couplingTime
+)
+:
+    mesh_(mesh),
+    rho_(rho),
+    nu_(nu),
+    alphaMin_(couplingProperties.getOrDefault<scalar>("alphaMin", 0.3)),
+    addedMassCoefficient_(couplingProperties.getOrDefault<scalar>("addedMassCoefficient", 0)),
+    couplingTime_(couplingTime),
+    stabilityCheck_(couplingProperties.getOrDefault<bool>("stabilityCheck", true)),
+    drag_(dragModel::New(couplingProperties)),
+    fraction_(fluidFractionModel::New(couplingProperties)),
+    momentum_(momentumCouplingModel::New(couplingProperties)),
+    locator_(mesh, fraction_()),
+    surface_(mesh, couplingProperties),
+    alpha_(fieldIO(mesh, "alpha", true), mesh, dimensionedScalar("one", dimless, 1.0),
+           zeroGradientFvPatchScalarField::typeName),
+    Us_(fieldIO(mesh, "Us", true), mesh, dimensionedVector("zero", dimVelocity, Zero),
+        zeroGradientFvPatchVectorField::typeName),
+    Ksl_(fieldIO(mesh, "Ksl", false), mesh, dimensionedScalar("zero", inv(dimTime), 0),
+         zeroGradientFvPatchScalarField::typeName),
+    KslUs_(fieldIO(mesh, "KslUs", false), mesh, dimensionedVector("zero", dimAcceleration, Zero),
+           zeroGradientFvPatchVectorField::typeName),
+    explicitForce_(fieldIO(mesh, "couplingForce", false), mesh,
+                   dimensionedVector("zero", dimAcceleration, Zero),
+                   zeroGradientFvPatchVectorField::typeName),
+    totalDrag_(Zero),
+    totalPressureForce_(Zero),
+    totalAddedMass_(Zero),
+    clampedCells_(0)
+{
+    if (addedMassCoefficient_ < 0)
+    {
+        FatalIOErrorInFunction(couplingProperties)
+            << "entry 'addedMassCoefficient' is " << addedMassCoefficient_
+            << ": it must be >= 0 (0.5 for a sphere, 0 for none)" << exit(FatalIOError);
+    }
+    if (addedMassCoefficient_ > 0 && couplingTime_ <= 0)
+    {
+        FatalErrorInFunction
+            << "added mass needs the coupling time (got " << couplingTime_ << " s)"
+            << exit(FatalError);
+    }
+    if (alphaMin_ <= 0 || alphaMin_ >= 1)
+    {
+        FatalIOErrorInFunction(couplingProperties)
+            << "entry 'alphaMin' is " << alphaMin_
+            << ": the lowest fluid fraction allowed must lie in (0, 1)" << exit(FatalIOError);
+    }
+    if (rho_ <= 0 || nu_ <= 0)
+    {
+        FatalErrorInFunction
+            << "fluid density " << rho_ << " and viscosity " << nu_ << " must be positive"
+            << exit(FatalError);
+    }
+}
+
+
+void particleFluidCoupling::update
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const volVectorField& U,
+    const volVectorField& gradp
+)
+{
+    updateFluidFraction(particles);
+    updateExchange(particles, U);
+    updateForces(particles, U, gradp);
+}
+
+
+void particleFluidCoupling::updateFluidFraction
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles
+)
+{
+    wetFraction_.setSize(particles.size());
+    if (surface_.active())
+    {
+        std::vector<::iceCoupling::CouplingParticle> inWater(particles.size());
+        forAll(wetFraction_, i)
+        {
+            wetFraction_[i] = surface_.submergedFraction(particles[i]);
+            inWater[i] = surface_.inWater(particles[i]);
+        }
+        locator_.locate(inWater);
+    }
+    else
+    {
+        wetFraction_ = 1;
+        locator_.locate(particles);
+    }
+    const scalarField& V = mesh_.V();
+    scalarField solid(mesh_.nCells(), 0);
+    vectorField solidMomentum(mesh_.nCells(), Zero);
+    for (const particleSample& s : locator_.samples())
+    {
+        const auto& p = particles[s.particle];
+        const scalar share = s.share*wetFraction_[s.particle]*volumeOf(p);
+        if (fraction_->lumped() && share > (1 - alphaMin_)*V[s.cell])
+        {
+            FatalErrorInFunction
+                << "particle " << p.tag << " (volume " << share << " m^3) sits in cell "
+                << s.cell << " of volume " << V[s.cell] << " m^3: alone it fills more than"
+                << " 1 - alphaMin = " << 1 - alphaMin_ << " of the cell, which fluidFractionModel"
+                << " centre cannot represent. Use fluidFractionModel divided in"
+                << " constant/couplingProperties, or cells larger than the particles"
+                << exit(FatalError);
+        }
+        solid[s.cell] += share;
+        solidMomentum[s.cell] += share*toVector(p.velocity);
+    }
+
+    scalarField& alpha = alpha_.primitiveFieldRef();
+    vectorField& Us = Us_.primitiveFieldRef();
+    label clamped = 0;
+    scalar lowest = 1;
+    forAll(alpha, celli)
+    {
+        alpha[celli] = 1 - solid[celli]/V[celli];
+        lowest = min(lowest, alpha[celli]);
+        if (alpha[celli] < alphaMin_)
+        {
+            alpha[celli] = alphaMin_;
+            ++clamped;
+        }
+        Us[celli] = solid[celli] > 0 ? solidMomentum[celli]/solid[celli] : Zero;
+    }
+    clampedCells_ = returnReduce(clamped, sumOp<label>());
+    if (clampedCells_ > 0)
+    {
+        WarningInFunction
+            << "fluid fraction below alphaMin = " << alphaMin_ << " (lowest "
+            << returnReduce(lowest, minOp<scalar>()) << ") in " << clampedCells_
+            << " cells at time " << mesh_.time().timeName() << "; clamped to alphaMin" << endl;
+    }
+    alpha_.correctBoundaryConditions();
+    Us_.correctBoundaryConditions();
+}
+
+
+std::vector<double> particleFluidCoupling::atParticles
+(
+    label nParticles, const volVectorField& field, bool withAlpha
+) const
+{
+    // Share-weighted over each particle's samples' cells, summed over the
+    // ranks that hold them: (alpha,) then the field's three components.
+    const int width = withAlpha ? 4 : 3;
+    std::vector<double> values(width*nParticles, 0.0);
+    for (const particleSample& s : locator_.samples())
+    {
+        double* row = &values[width*s.particle];
+        if (withAlpha)
+        {
+            *row++ += s.share*alpha_[s.cell];
+        }
+        for (direction k = 0; k < 3; ++k)
+        {
+            row[k] += s.share*field[s.cell][k];
+        }
+    }
+    sumOverRanks(values);
+    return values;
+}
+
+
+void particleFluidCoupling::updateExchange
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const volVectorField& U
+)
+{
+    const label n = particles.size();
+    const std::vector<double> atParticle(atParticles(n, U, true));
+    K_.setSize(n);
+    exchangeFluidVelocity_.setSize(n);
+    std::vector<double> alphaAtParticle(n);
+    for (label i = 0; i < n; ++i)
+    {
+        const double* row = &atParticle[4*i];
+        const auto& p = particles[i];
+        alphaAtParticle[i] = row[0];
+        exchangeFluidVelocity_[i] = vector(row[1], row[2], row[3]);
+        const vector slip = exchangeFluidVelocity_[i] - toVector(p.velocity);
+        K_[i] = wetFraction_[i]*drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
+    }
+    checkStability(particles, alphaAtParticle);
+
+    // The fluid's side: the same K, shared out as the particle's volume is,
+    // and the reaction to the added mass of the last interval.
+    const scalarField& V = mesh_.V();
+    scalarField& Ksl = Ksl_.primitiveFieldRef();
+    vectorField& KslUs = KslUs_.primitiveFieldRef();
+    Ksl = 0;
+    KslUs = Zero;
+    const bool addedMassKnown = addedMassForce_.size() == n;
+    for (const particleSample& s : locator_.samples())
+    {
+        const scalar k = s.share*K_[s.particle]/(rho_*V[s.cell]);
+        Ksl[s.cell] += k;
+        KslUs[s.cell] += k*toVector(particles[s.particle].velocity);
+        if (addedMassKnown)
+        {
+            KslUs[s.cell] -= s.share/(rho_*V[s.cell])*addedMassForce_[s.particle];
+        }
+    }
+    Ksl_.correctBoundaryConditions();
+    KslUs_.correctBoundaryConditions();
+    explicitForce_.primitiveFieldRef() = KslUs - Ksl*U.primitiveField();
+    explicitForce_.correctBoundaryConditions();
+}
+
+
+void particleFluidCoupling::updateForces
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const volVectorField& U,
+    const volVectorField& gradp
+)
+{
+    const label n = particles.size();
+    if (K_.size() != n)
+    {
+        FatalErrorInFunction
+            << "updateForces for " << n << " particles after updateExchange for " << K_.size()
+            << abort(FatalError);
+    }
+    const std::vector<double> fluidVelocity(atParticles(n, U, false));
+    const std::vector<double> pressureGradient(atParticles(n, gradp, false));
+
+    forces_.assign(n, {0.0, 0.0, 0.0});
+    addedMassForce_.setSize(n);
+    totalDrag_ = Zero;
+    totalPressureForce_ = Zero;
+    totalAddedMass_ = Zero;
+    currentSlip_.resize(n);
+    for (label i = 0; i < n; ++i)
+    {
+        const auto& p = particles[i];
+        // The fluid velocity the fluid's own share of the drag was solved
+        // with: the new one where it is implicit, the frozen one where explicit.
+        const vector Uf =
+            momentum_->implicitInFluid()
+          ? vector(fluidVelocity[3*i], fluidVelocity[3*i + 1], fluidVelocity[3*i + 2])
+          : exchangeFluidVelocity_[i];
+        const vector drag = K_[i]*(Uf - toVector(p.velocity));
+        const vector pressure = -rho_*wetFraction_[i]*volumeOf(p)
+            *vector(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
+        addedMassForce_[i] = addedMass(p, Uf, i);
+        const vector total = drag + pressure + addedMassForce_[i];
+        forces_[i] = {total.x(), total.y(), total.z()};
+        totalDrag_ += drag;
+        totalPressureForce_ += pressure;
+        totalAddedMass_ += addedMassForce_[i];
+    }
+    previousSlip_.swap(currentSlip_);
+    previousTags_.resize(n);
+    for (label i = 0; i < n; ++i)
+    {
+        previousTags_[i] = particles[i].tag;
+    }
+}
+
+
+tmp<fvVectorMatrix> particleFluidCoupling::momentumSource(volVectorField& U) const
+{
+    return momentum_->source(Ksl_, KslUs_, explicitForce_, U);
+}
+
+
+void particleFluidCoupling::checkStability
+(
+    const std::vector<::iceCoupling::CouplingParticle>& particles,
+    const std::vector<double>& alphaAtParticle
+) const
+{
+    if (!stabilityCheck_ || couplingTime_ <= 0)
+    {
+        return;
+    }
+    label worst = -1;
+    scalar worstFactor = 1;
+    scalar worstA = 0, worstB = 0;
+    forAll(K_, i)
+    {
+        const auto& p = particles[i];
+        if (p.mass <= 0)
+        {
+            continue;
+        }
+        const scalar alpha = alphaAtParticle[i];
+        const scalar a = K_[i]/p.mass;
+        if (K_[i] <= 0)
+        {
+            continue;   // out of the water
+        }
+        const scalar b = K_[i]*(1 - alpha)/(alpha*rho_*wetFraction_[i]*volumeOf(p));
+        const scalar factor = mag(momentum_->slipGrowthFactor(couplingTime_, a, b));
+        if (factor > worstFactor)
+        {
+            worst = i;
+            worstFactor = factor;
+            worstA = a;
+            worstB = b;
+        }
+    }
+    if (worst >= 0)
+    {
+        FatalErrorInFunction
+            << "the drag exchange is unstable with momentumCoupling "
+            << momentum_->type() << " and a coupling time of " << couplingTime_ << " s: particle "
+            << particles[worst].tag << " (fluid fraction " << alphaAtParticle[worst]
+            << ", drag relaxation rate " << worstA << " 1/s, fluid's " << worstB
+            << " 1/s) would see its slip velocity multiplied by " << worstFactor
+            << " every coupling step. Stable up to a coupling time of "
+            << momentum_->stableCouplingTime(worstA, worstB) << " s with " << momentum_->type()
+            << (momentum_->type() == "explicit"
+                ? word(" (semiImplicit allows more)") : word(""))
+            << ": lower couplingInterval (constant/couplingProperties) and deltaT"
+            << " (system/controlDict), or set stabilityCheck no to run it anyway"
+            << exit(FatalError);
+    }
+}
+
+
+vector particleFluidCoupling::addedMass
+(
+    const ::iceCoupling::CouplingParticle& p, const vector& fluidVelocity, label index
+)
+{
+    currentSlip_[index] = fluidVelocity - toVector(p.velocity);
+    const bool seenBefore =
+        index < label(previousTags_.size()) && previousTags_[index] == p.tag;
+    if (addedMassCoefficient_ == 0 || !seenBefore)
+    {
+        return Zero;
+    }
+    return addedMassCoefficient_*rho_*wetFraction_[index]*volumeOf(p)
+          *(currentSlip_[index] - previousSlip_[index])/couplingTime_;
+}
+
+
+vector particleFluidCoupling::fluidExchangeTotal(const volVectorField& U) const
+{
+    if (momentum_->implicitInFluid())
+    {
+        return rho_*gSum(mesh_.V()*(KslUs_.primitiveField() - Ksl_.primitiveField()*U.primitiveField()));
+    }
+    return rho_*gSum(mesh_.V()*explicitForce_.primitiveField());
+}
+
+} // namespace iceCoupling
+} // namespace Foam

@@ -1,0 +1,149 @@
+#include "particleLocator.H"
+#include "parallelSum.H"
+#include "Pstream.H"
+
+namespace Foam
+{
+namespace iceCoupling
+{
+
+particleLocator::particleLocator(const fvMesh& mesh, const fluidFractionModel& model)
+:
+    mesh_(mesh),
+    model_(model)
+{
+    // Built on demand with parallel communication: build them here, on every
+    // rank, since only ranks with particles nearby would ask for them later.
+    mesh_.tetBasePtIs();
+    mesh_.cellTree();
+}
+
+
+label particleLocator::findCell(const point& p, label hint) const
+{
+    if (hint >= 0 && mesh_.pointInCell(p, hint, polyMesh::CELL_TETS))
+    {
+        return hint;
+    }
+    return mesh_.findCell(p, polyMesh::CELL_TETS);
+}
+
+
+scalar particleLocator::clearance(const point& p, label cell) const
+{
+    scalar nearest = GREAT;
+    for (const label facei : mesh_.cells()[cell])
+    {
+        // Face normals point out of their owner.
+        const vector outward =
+            (mesh_.faceOwner()[facei] == cell ? 1 : -1)*mesh_.faceAreas()[facei]
+           /mag(mesh_.faceAreas()[facei]);
+        nearest = min(nearest, (mesh_.faceCentres()[facei] - p) & outward);
+    }
+    return nearest;
+}
+
+
+label particleLocator::sampleCell(const point& p, label centreCell) const
+{
+    if (centreCell >= 0)
+    {
+        if (mesh_.pointInCell(p, centreCell, polyMesh::FACE_PLANES))
+        {
+            return centreCell;
+        }
+        for (const label neighbour : mesh_.cellCells()[centreCell])
+        {
+            if (mesh_.pointInCell(p, neighbour, polyMesh::FACE_PLANES))
+            {
+                return neighbour;
+            }
+        }
+    }
+    return mesh_.findCell(p, polyMesh::CELL_TETS);
+}
+
+
+void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>& particles)
+{
+    const label nParticles = particles.size();
+    const vectorList& offsets = model_.unitOffsets();
+    const scalarList& shares = model_.shares();
+    const label nSamples = offsets.size();
+    const int myRank = Pstream::myProcNo();
+    const int nobody = Pstream::nProcs();
+
+    labelList previous(centreCell_);
+    if (previous.size() != nParticles)
+    {
+        previous.setSize(nParticles, -1);
+    }
+    centreCell_.setSize(nParticles, -1);
+    labelList cellOfSample(nParticles*nSamples, -1);
+
+    // One list for one reduction: the centre owner then the sample owners of each particle.
+    std::vector<int> owner(nParticles*(nSamples + 1), nobody);
+    const boundBox localBox(mesh_.points(), false);   // mesh_.bounds() is global
+    for (label i = 0; i < nParticles; ++i)
+    {
+        const point c(particles[i].position[0], particles[i].position[1], particles[i].position[2]);
+        const scalar d = particles[i].diameter;
+        if (!localBox.overlaps(c, sqr(0.5*d)))
+        {
+            continue;
+        }
+        const label cell = findCell(c, previous[i]);
+        if (cell >= 0)
+        {
+            centreCell_[i] = cell;
+            owner[i*(nSamples + 1)] = myRank;
+        }
+        // Most particles lie wholly inside their cell: no sample search.
+        const bool inside = cell >= 0 && clearance(c, cell) >= 0.5*d;
+        for (label s = 0; s < nSamples; ++s)
+        {
+            const label sc = inside ? cell : sampleCell(c + d*offsets[s], cell);
+            if (sc >= 0)
+            {
+                cellOfSample[i*nSamples + s] = sc;
+                owner[i*(nSamples + 1) + 1 + s] = myRank;
+            }
+        }
+    }
+    minOverRanks(owner);
+
+    samples_.clear();
+    for (label i = 0; i < nParticles; ++i)
+    {
+        const int* o = &owner[i*(nSamples + 1)];
+        if (o[0] == nobody)
+        {
+            const auto& p = particles[i];
+            FatalErrorInFunction
+                << "particle " << p.tag << " at (" << p.position[0] << ' ' << p.position[1]
+                << ' ' << p.position[2] << ") is outside the fluid mesh (bounds "
+                << mesh_.bounds() << "): with hydrodynamics"
+                << " level cfd every particle must stay inside the mesh; enlarge the mesh"
+                << " (system/blockMeshDict) or keep the particles in it with walls in the DEM script"
+                << exit(FatalError);
+        }
+        if (o[0] != myRank)
+        {
+            centreCell_[i] = -1;
+        }
+        for (label s = 0; s < nSamples; ++s)
+        {
+            if (o[1 + s] == myRank)
+            {
+                samples_.append(particleSample{i, cellOfSample[i*nSamples + s], shares[s]});
+            }
+            else if (o[1 + s] == nobody && o[0] == myRank)
+            {
+                samples_.append(particleSample{i, centreCell_[i], shares[s]});
+            }
+        }
+    }
+}
+
+} // namespace iceCoupling
+} // namespace Foam

@@ -1,0 +1,43 @@
+#!/bin/bash
+# iceFoam refuses bad couplingProperties with a clear message and a non-zero exit.
+# Usage: badInput.sh CASE_SOURCE WORK_DIR ICEFOAM
+set -uo pipefail
+src=$1 work=$2 app=$3
+failures=0
+
+# expectRefusal NAME EXPECTED_MESSAGE FILE:ENTRY=VALUE...
+expectRefusal() {
+    local name=$1 expected=$2
+    shift 2
+    local dir="$work/$name"
+    rm -rf "$dir"
+    mkdir -p "$dir"
+    cp -r "$src/0" "$src/constant" "$src/system" "$src/DEM" "$dir/"
+    for change in "$@"; do
+        local file=${change%%:*} setting=${change#*:}
+        foamDictionary -entry "${setting%%=*}" -set "${setting#*=}" "$dir/$file" > /dev/null
+    done
+    blockMesh -case "$dir" > "$dir/log.blockMesh" 2>&1
+    "$app" -case "$dir" > "$dir/log.iceFoam" 2>&1
+    local rc=$?
+    if [ $rc -eq 0 ]; then
+        echo "FAIL $name: accepted (exit 0)"; failures=$((failures + 1))
+    elif ! grep -qF -- "$expected" "$dir/log.iceFoam"; then
+        echo "FAIL $name: exit $rc without '$expected'; log ends:"; tail -15 "$dir/log.iceFoam"
+        failures=$((failures + 1))
+    else
+        echo "ok   $name: exit $rc, says: $(grep -F -m1 -- "$expected" "$dir/log.iceFoam" | sed 's/^ *//')"
+    fi
+}
+
+props=constant/couplingProperties
+expectRefusal unknownDragModel "Unknown dragModel type Stokes" "$props:dragModel=Stokes"
+expectRefusal unknownFluidFraction "Unknown fluidFractionModel type voronoi" "$props:fluidFractionModel=voronoi"
+expectRefusal unknownMomentumCoupling "Unknown momentumCoupling type implicit" "$props:momentumCoupling=implicit"
+expectRefusal fluidStepNotDividing "does not divide" "system/controlDict:deltaT=3e-4"
+expectRefusal adjustableFluidStep "adjustTimeStep" "system/controlDict:adjustTimeStep=yes"
+expectRefusal particleOutsideMesh "is outside the fluid mesh" "$props:demVariables/zMax=0.3" "$props:demVariables/z0=0.2"
+expectRefusal hydrostaticLevel "entry 'hydrodynamics'" "$props:hydrodynamics=hydrostatic"
+expectRefusal badAlphaMin "alphaMin" "$props:alphaMin=1.5"
+expectRefusal zeroCouplingInterval "a whole number >= 1" "$props:couplingInterval=0"
+exit $failures

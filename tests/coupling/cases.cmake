@@ -1,0 +1,74 @@
+# Coupled cases, shortened: the sphere settles to the Schiller-Naumann terminal
+# velocity within 2 % (its Allrun checks), on 1 and on 2 ranks with the same trajectory.
+# It starts at z = 75 mm so that it crosses the ranks' boundary (z = 60 mm) on 2 ranks.
+set(PYTHON /usr/bin/python3)
+foreach(np 1 2)
+  add_test(NAME sphereSettlingSmall_np${np}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runCase.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+            ${COUPLING_WORK}/sphereSettling_np${np} ${np} 0.25
+            constant/couplingProperties:demVariables/z0=0.075)
+  set_tests_properties(sphereSettlingSmall_np${np} PROPERTIES
+    FIXTURES_SETUP settling_np${np} TIMEOUT 300 PROCESSORS ${np}
+    ENVIRONMENT "${FOAM_ENV};OMPI_MCA_mpi_yield_when_idle=1")
+endforeach()
+add_test(NAME sphereSettlingSmall_oneVsTwoRanks
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
+          ${COUPLING_WORK}/sphereSettling_np1 ${COUPLING_WORK}/sphereSettling_np2)
+set_tests_properties(sphereSettlingSmall_oneVsTwoRanks PROPERTIES
+  FIXTURES_REQUIRED "settling_np1;settling_np2")
+
+# The way to terminal velocity, too: within 2 % of v_t of the ODE at every
+# coupling step, without and with added mass (C_a = 0.5 changes the ODE's
+# velocity by up to 7.6 % of v_t, so each check can fail).
+add_test(NAME sphereSettlingSmall_transient
+  COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/sphereSettling/compareWithOde.py
+          ${COUPLING_WORK}/sphereSettling_np1 --max-deviation 0.02)
+set_tests_properties(sphereSettlingSmall_transient PROPERTIES FIXTURES_REQUIRED settling_np1)
+add_test(NAME sphereSettlingAddedMass
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runCase.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+          ${COUPLING_WORK}/sphereSettlingAddedMass 1 0.25
+          constant/couplingProperties:addedMassCoefficient=0.5)
+set_tests_properties(sphereSettlingAddedMass PROPERTIES
+  FIXTURES_SETUP settlingAddedMass TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+add_test(NAME sphereSettlingAddedMass_transient
+  COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/sphereSettling/compareWithOde.py
+          ${COUPLING_WORK}/sphereSettlingAddedMass --max-deviation 0.02)
+set_tests_properties(sphereSettlingAddedMass_transient PROPERTIES FIXTURES_REQUIRED settlingAddedMass)
+
+# Bad couplingProperties and controlDict entries: a clear message and a non-zero exit.
+add_test(NAME iceFoam_badInput
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/sphereSettling
+          ${COUPLING_WORK}/badInput $<TARGET_FILE:iceFoam>)
+set_tests_properties(iceFoam_badInput PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+
+# Light particles (ice): explicit drag exchange diverges where the semi-implicit
+# one relaxes, the stability check refuses it, and momentum is conserved.
+add_test(NAME lightCloud_stabilityAndMomentum
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/lightCloudStability.py
+          ${CMAKE_CURRENT_SOURCE_DIR}/lightCloud ${COUPLING_WORK}/lightCloud $<TARGET_FILE:iceFoam>)
+set_tests_properties(lightCloud_stabilityAndMomentum PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+
+# 1,728 particles in the periodic light cloud, moving across the boundary between
+# the ranks and through the periodic faces: 1 and 2 ranks, same trajectories.
+foreach(np 1 2)
+  add_test(NAME lightCloud_np${np}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceFoam>
+            ${CMAKE_CURRENT_SOURCE_DIR}/lightCloud ${COUPLING_WORK}/lightCloud_np${np} ${np}
+            system/controlDict:endTime=1.12)
+  set_tests_properties(lightCloud_np${np} PROPERTIES
+    FIXTURES_SETUP cloud_np${np} TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${FOAM_ENV}")
+endforeach()
+add_test(NAME lightCloud_oneVsTwoRanks
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
+          ${COUPLING_WORK}/lightCloud_np1 ${COUPLING_WORK}/lightCloud_np2)
+set_tests_properties(lightCloud_oneVsTwoRanks PROPERTIES FIXTURES_REQUIRED "cloud_np1;cloud_np2")
+
+# Floating ice at the water surface (waterLevel): the draft of a sphere.
+add_test(NAME floatingSphere_run
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceFoam>
+          ${CMAKE_CURRENT_SOURCE_DIR}/floatingSphere ${COUPLING_WORK}/floatingSphere 1)
+set_tests_properties(floatingSphere_run PROPERTIES
+  FIXTURES_SETUP floating TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+add_test(NAME floatingSphere_draft
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/checkFloating.py ${COUPLING_WORK}/floatingSphere)
+set_tests_properties(floatingSphere_draft PROPERTIES FIXTURES_REQUIRED floating)
