@@ -203,6 +203,22 @@ void FreezeBondStrengthModel::setSubmersionTime(double t)
 }
 
 
+void FreezeBondStrengthModel::setSetStrengths(double tensile, double shear)
+{
+    if (kind_ != Kind::fixedSet)
+    {
+        throw InputError(fileName_, "strengthModel", "must be fixedSet to override the set's strengths");
+    }
+    if (!(tensile > 0.0 && shear > 0.0))
+    {
+        throw std::invalid_argument("FreezeBondStrengthModel::setSetStrengths: strengths must be positive");
+    }
+    setTensile_ = tensile;
+    setShear_ = shear;
+    shearRatio_ = shear/tensile;
+}
+
+
 void FreezeBondStrengthModel::setAreaCorrection(double cf)
 {
     if (!(cf > 0.0) || !std::isfinite(cf))

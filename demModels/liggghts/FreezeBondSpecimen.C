@@ -1,0 +1,344 @@
+#include "FreezeBondSpecimen.H"
+
+#include "BondBuilder.H"
+#include "BondModel.H"
+#include "Dictionary.H"
+#include "IceBlocks.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+#include "TimeStep.H"
+
+#include "atom.h"
+#include "lammps.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+double positiveEntry(const Dictionary& d, const std::string& key, double def)
+{
+    const double v = d.getScalarOrDefault(key, def);
+    if (!(v > 0.0))
+    {
+        d.fail(key, "must be positive");
+    }
+    return v;
+}
+
+} // namespace
+
+
+SpecimenGeometry SpecimenGeometry::read(const Dictionary& sp, const SpecimenGeometry& defaults)
+{
+    sp.checkKeys({"diameter", "halfLength", "particleDiameter", "polygonSides"});
+    SpecimenGeometry g = defaults;
+    g.diameter = positiveEntry(sp, "diameter", g.diameter);
+    g.halfLength = positiveEntry(sp, "halfLength", g.halfLength);
+    g.particleDiameter = positiveEntry(sp, "particleDiameter", g.particleDiameter);
+    g.polygonSides = sp.getLabelOrDefault("polygonSides", g.polygonSides);
+    if (g.polygonSides < 6) sp.fail("polygonSides", "must be at least 6");
+    if (g.particleDiameter*4 > g.diameter) sp.fail("particleDiameter", "must be at most a quarter of the diameter");
+    if (g.particleDiameter*3 > g.halfLength) sp.fail("particleDiameter", "must be at most a third of halfLength");
+    return g;
+}
+
+
+FreezeBondSpecimen::FreezeBondSpecimen
+(
+    MPI_Comm comm,
+    const std::string& caseDir,
+    const std::string& appName,
+    double submersionTime
+)
+:
+    comm_(comm),
+    caseDir_(caseDir),
+    appName_(appName)
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+    ice_ = IceProperties::read(path("constant/iceProperties"));
+    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
+    {
+        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
+            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
+    }
+    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    if (submersionTime > 0.0)
+    {
+        strengthModel_.setSubmersionTime(submersionTime);
+    }
+}
+
+
+FreezeBondSpecimen::~FreezeBondSpecimen() = default;
+
+
+void FreezeBondSpecimen::setFreezeModulus(double youngsModulus)
+{
+    ice_.families[static_cast<int>(BondFamily::freeze)].youngsModulus = youngsModulus;
+}
+
+
+std::string FreezeBondSpecimen::path(const std::string& relative) const
+{
+    return caseDir_ + "/" + relative;
+}
+
+
+void FreezeBondSpecimen::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+double FreezeBondSpecimen::layerHeight(int layer) const
+{
+    return (layer - layersPerHalf_ + 0.5)*layerSpacing_;
+}
+
+
+void FreezeBondSpecimen::build
+(
+    const SpecimenGeometry& geometry,
+    int atomTypes,
+    const std::function<int(int layer, const ParticleSpec&)>& typeOf
+)
+{
+    geometry_ = geometry;
+    atomTypes_ = atomTypes;
+    const double d = geometry.particleDiameter;
+    layerSpacing_ = d*std::sqrt(2.0/3.0);
+    layersPerHalf_ = 1 + static_cast<int>(std::lround((geometry.halfLength - d)/layerSpacing_));
+    const PlanPolygon outline = PlanPolygon::regular(geometry.polygonSides, 0.5*geometry.diameter);
+    const double interfaceZ = 0.5*d + (layersPerHalf_ - 0.5)*layerSpacing_;
+    for (const Vec3& c : hcpBlockCentres(outline, d, 2*layersPerHalf_))
+    {
+        const int layer = static_cast<int>(std::lround((c.z() - 0.5*d)/layerSpacing_));
+        ParticleSpec p;
+        p.position = c - Vec3(0, 0, interfaceZ);
+        p.radius = 0.5*d;
+        p.block = layer < layersPerHalf_ ? 0 : 1;
+        p.material = typeOf(layer, p);
+        if (p.material < 1 || p.material > atomTypes)
+        {
+            throw std::logic_error("FreezeBondSpecimen::build: atom type out of range");
+        }
+        particles_.push_back(p);
+        layerOf_.push_back(layer);
+    }
+    BondBuilder builder(ice_);
+    for (const BondPair& b : builder.build(particles_))
+    {
+        if (b.family == BondFamily::ice)
+        {
+            iceBonds_.push_back(b);
+        }
+    }
+    const BondStatistics stats = bondStatistics(iceBonds_, static_cast<int>(particles_.size()));
+    std::ostringstream msg;
+    msg << "Specimen: " << particles_.size() << " particles of " << d*1e3 << " mm in " << 2*layersPerHalf_
+        << " close-packed layers; ice bonds: " << stats.summary();
+    log(msg.str());
+
+    contact_ = ContactParameters::of(ice_, d, ice_.material.density*M_PI/6.0*d*d*d);
+    // Room for the freeze-bonds: at most 3 per particle across a close-packed interface.
+    const TimeStepLimits limits = timeStepLimits(ice_, 0.5*d, stats.maxBondsPerParticle + 3);
+    dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
+}
+
+
+void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables& extra, double margin)
+{
+    const double r = 0.5*geometry_.particleDiameter;
+    const double reach = 0.5*geometry_.diameter + margin;
+    if (rank_ == 0)
+    {
+        std::filesystem::create_directories(path("DEM"));
+        writeLiggghtsData
+        (
+            path("DEM/specimen.data"), "freeze-bond specimen written by " + appName_,
+            particles_, ice_.material.density,
+            Vec3(-reach, -reach, -geometry_.halfLength - margin),
+            Vec3(reach, reach, geometry_.halfLength + margin),
+            atomTypes_,
+            [](const ParticleSpec& p) { return p.material; }
+        );
+    }
+    MPI_Barrier(comm_);
+    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
+    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    const double skin = 0.2*r;
+    ScriptVariables variables
+    {
+        {"dataFile", path("DEM/specimen.data")},
+        {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, r, skin))},
+        {"neighbourSkin", exactNumber(skin)},
+        {"dt", exactNumber(dt_)}
+    };
+    const ScriptVariables contactVars = contactVariables(contact_);
+    variables.insert(variables.end(), contactVars.begin(), contactVars.end());
+    variables.insert(variables.end(), extra.begin(), extra.end());
+    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), appName_);
+    const std::string scriptPath = path("DEM/" + script);
+    if (!std::filesystem::exists(scriptPath))
+    {
+        throw InputError(scriptPath, "(file)", "the LIGGGHTS input script is missing");
+    }
+    lmp_->runScript(scriptPath);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
+    lmp_->command("fix iceBondForces all external pf/callback 1 1");
+    bonds_->attach("iceBondForces");
+    lmp_->command("run 0");     // property/atom is reset by the first run's set-up
+    bonds_->createBonds(particles_, iceBonds_);
+    lmp_->command("run 0");
+}
+
+
+void FreezeBondSpecimen::run(long steps)
+{
+    lmp_->command("run " + std::to_string(steps) + (setUpNextRun_ ? " post no" : " pre no post no"));
+    setUpNextRun_ = false;
+    steps_ += steps;
+}
+
+
+double FreezeBondSpecimen::time() const
+{
+    return lmp_->time();
+}
+
+
+double FreezeBondSpecimen::forceOnType(int type, int component) const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double f = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (atom.type[i] == type)
+        {
+            f += atom.f[i][component];
+        }
+    }
+    return sumOverRanks(comm_, f);
+}
+
+
+long FreezeBondSpecimen::atomsOfType(int type) const
+{
+    long n = 0;
+    for (const ParticleSpec& p : particles_)
+    {
+        n += p.material == type;
+    }
+    return n;
+}
+
+
+double FreezeBondSpecimen::meanPositionOfLayer(int layer, int component) const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double sum = 0.0;
+    long n = 0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (layerOf_[atom.tag[i] - 1] == layer)
+        {
+            sum += atom.x[i][component];
+            ++n;
+        }
+    }
+    return sumOverRanks(comm_, sum)/static_cast<double>(sumOverRanks(comm_, n));
+}
+
+
+void FreezeBondSpecimen::freezeBond(double interfaceArea)
+{
+    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    std::vector<ParticleSpec> now = particles_;
+    for (std::size_t k = 0; k < now.size(); ++k)
+    {
+        now[k].position = positions[k];
+    }
+    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
+    {
+        // The real frozen area is the specimen's cross-section, shared by the DEM bonds across it.
+        double bondAreas = 0.0;
+        for (const NewFreezeBond& b : freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness))
+        {
+            bondAreas += bondArea(ice_.family(BondFamily::freeze), now[b.pair.i].radius, now[b.pair.j].radius);
+        }
+        if (bondAreas <= 0.0)
+        {
+            throw RunError("no contacts across the interface to freeze-bond");
+        }
+        strengthModel_.setAreaCorrection(interfaceArea/bondAreas);
+    }
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
+    freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
+    const BondModel model(ice_.family(BondFamily::freeze), ice_.damping);
+    std::vector<BondState> states;
+    for (const NewFreezeBond& b : freezeBonds_)
+    {
+        ParticleState pa, pb;
+        pa.position = now[b.pair.i].position;
+        pa.radius = now[b.pair.i].radius;
+        pb.position = now[b.pair.j].position;
+        pb.radius = now[b.pair.j].radius;
+        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
+        s.family = BondFamily::freeze;
+        s.tensileStrength = b.strength.tensile;
+        s.shearStrength = b.strength.shear;
+        states.push_back(s);
+    }
+    bonds_->addBonds(states);
+    std::ostringstream msg;
+    msg << "Freeze-bonds: " << freezeStats_.bonds << " across the interface, confinement "
+        << freezeStats_.meanConfinement*1e-3 << " kPa mean, tensile strength " << freezeStats_.meanTensile*1e-3
+        << " +- " << freezeStats_.sdTensile*1e-3 << " kPa, shear " << freezeStats_.meanShear*1e-3
+        << " kPa on the bond area; " << strengthModel_.summary();
+    log(msg.str());
+}
+
+
+long FreezeBondSpecimen::intactFreezeBonds() const
+{
+    long intact = 0;
+    for (const BondLink& l : bonds_->localLinks())
+    {
+        intact += l.family == static_cast<int>(BondFamily::freeze);
+    }
+    return sumOverRanks(comm_, intact);
+}
+
+
+void FreezeBondSpecimen::collectBreaks()
+{
+    for (const BreakEvent& e : gatherBreakEvents(comm_, bonds_->takeLocalBreakEvents()))
+    {
+        breakage_.append(e);
+    }
+}
+
+
+void FreezeBondSpecimen::checkHealth() const
+{
+    if (!bonds_->failure().empty())
+    {
+        throw RunError(bonds_->failure());
+    }
+}
+
+} // namespace iceDEM
