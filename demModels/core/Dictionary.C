@@ -527,6 +527,17 @@ double Dictionary::getScalar(const std::string& key) const
 }
 
 
+double Dictionary::getPositiveScalarOrDefault(const std::string& key, double def) const
+{
+    const double v = getScalarOrDefault(key, def);
+    if (!(v > 0.0))
+    {
+        fail(key, "must be positive");
+    }
+    return v;
+}
+
+
 double Dictionary::getScalarOrDefault(const std::string& key, double def) const
 {
     return found(key) ? getScalar(key) : def;

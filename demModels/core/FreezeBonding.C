@@ -73,6 +73,32 @@ std::vector<NewFreezeBond> freezeBondsAtContacts
 }
 
 
+std::vector<BondState> freezeBondStates
+(
+    const std::vector<NewFreezeBond>& bonds,
+    const std::vector<ParticleSpec>& now,
+    const IceProperties& ice
+)
+{
+    const BondModel model(ice.family(BondFamily::freeze), ice.damping);
+    std::vector<BondState> states;
+    for (const NewFreezeBond& b : bonds)
+    {
+        ParticleState pa, pb;
+        pa.position = now[b.pair.i].position;
+        pa.radius = now[b.pair.i].radius;
+        pb.position = now[b.pair.j].position;
+        pb.radius = now[b.pair.j].radius;
+        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
+        s.family = BondFamily::freeze;
+        s.tensileStrength = b.strength.tensile;
+        s.shearStrength = b.strength.shear;
+        states.push_back(s);
+    }
+    return states;
+}
+
+
 FreezeBondingStatistics freezeBondingStatistics
 (
     const std::vector<NewFreezeBond>& bonds,

@@ -1,5 +1,6 @@
 #include "FreezeBondShearScene.H"
 
+#include "AppMain.H"
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "ForceCurveAnalysis.H"
@@ -26,15 +27,6 @@ constexpr int innerLoadType = 4;   // load above, inner layer right of the plane
 constexpr int lowerPlateType = 5;  // end plates: the confinement
 constexpr int upperPlateType = 6;
 
-double positiveEntry(const Dictionary& d, const std::string& key, double def)
-{
-    const double v = d.getScalarOrDefault(key, def);
-    if (!(v > 0.0))
-    {
-        d.fail(key, "must be positive");
-    }
-    return v;
-}
 
 } // namespace
 
@@ -46,22 +38,10 @@ ShearTestSettings ShearTestSettings::read(int argc, char** argv)
     for (int k = 1; k < argc; ++k)
     {
         const std::string arg = argv[k];
-        auto number = [&]()
-        {
-            const std::string v = k + 1 < argc ? argv[++k] : "";
-            try
-            {
-                std::size_t used = 0;
-                const double x = std::stod(v, &used);
-                if (used == v.size() && x > 0.0) return x;
-            }
-            catch (const std::exception&) {}
-            throw InputError("command line", arg, "needs a positive number, got '" + v + "'");
-        };
         if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
         else if (arg == "-label" && k + 1 < argc) s.label = argv[++k];
-        else if (arg == "-shearStrength") s.shearStrength = number();
-        else if (arg == "-youngsModulus") s.youngsModulus = number();
+        else if (arg == "-shearStrength") s.shearStrength = positiveNumberArgument(argc, argv, k);
+        else if (arg == "-youngsModulus") s.youngsModulus = positiveNumberArgument(argc, argv, k);
         else
         {
             throw InputError("command line", arg,
@@ -74,14 +54,14 @@ ShearTestSettings ShearTestSettings::read(int argc, char** argv)
     const Dictionary& l = d.subDict("loading");
     l.checkKeys({"confinementPressure", "confinementTime", "innerLayer", "outerLayer", "loadRate", "maxLoad",
                  "samples"});
-    s.confinementPressure = positiveEntry(l, "confinementPressure", s.confinementPressure);
-    s.confinementTime = positiveEntry(l, "confinementTime", s.confinementTime);
+    s.confinementPressure = l.getPositiveScalarOrDefault("confinementPressure", s.confinementPressure);
+    s.confinementTime = l.getPositiveScalarOrDefault("confinementTime", s.confinementTime);
     s.innerLayer = l.getLabelOrDefault("innerLayer", s.innerLayer);
     s.outerLayer = l.getLabelOrDefault("outerLayer", s.outerLayer);
     if (s.innerLayer < 0) l.fail("innerLayer", "must be 0 or more");
     if (s.outerLayer <= s.innerLayer) l.fail("outerLayer", "must lie beyond innerLayer");
-    s.loadRate = positiveEntry(l, "loadRate", s.loadRate);
-    s.maxLoad = positiveEntry(l, "maxLoad", s.maxLoad);
+    s.loadRate = l.getPositiveScalarOrDefault("loadRate", s.loadRate);
+    s.maxLoad = l.getPositiveScalarOrDefault("maxLoad", s.maxLoad);
     s.samples = l.getLabelOrDefault("samples", s.samples);
     if (s.samples < 10) l.fail("samples", "must be at least 10");
     if (s.label.empty())

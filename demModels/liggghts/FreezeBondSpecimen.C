@@ -21,29 +21,15 @@
 namespace iceDEM
 {
 
-namespace
-{
-
-double positiveEntry(const Dictionary& d, const std::string& key, double def)
-{
-    const double v = d.getScalarOrDefault(key, def);
-    if (!(v > 0.0))
-    {
-        d.fail(key, "must be positive");
-    }
-    return v;
-}
-
-} // namespace
 
 
 SpecimenGeometry SpecimenGeometry::read(const Dictionary& sp, const SpecimenGeometry& defaults)
 {
     sp.checkKeys({"diameter", "halfLength", "particleDiameter", "polygonSides"});
     SpecimenGeometry g = defaults;
-    g.diameter = positiveEntry(sp, "diameter", g.diameter);
-    g.halfLength = positiveEntry(sp, "halfLength", g.halfLength);
-    g.particleDiameter = positiveEntry(sp, "particleDiameter", g.particleDiameter);
+    g.diameter = sp.getPositiveScalarOrDefault("diameter", g.diameter);
+    g.halfLength = sp.getPositiveScalarOrDefault("halfLength", g.halfLength);
+    g.particleDiameter = sp.getPositiveScalarOrDefault("particleDiameter", g.particleDiameter);
     g.polygonSides = sp.getLabelOrDefault("polygonSides", g.polygonSides);
     if (g.polygonSides < 6) sp.fail("polygonSides", "must be at least 6");
     if (g.particleDiameter*4 > g.diameter) sp.fail("particleDiameter", "must be at most a quarter of the diameter");
@@ -288,22 +274,7 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
     }
     freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
-    const BondModel model(ice_.family(BondFamily::freeze), ice_.damping);
-    std::vector<BondState> states;
-    for (const NewFreezeBond& b : freezeBonds_)
-    {
-        ParticleState pa, pb;
-        pa.position = now[b.pair.i].position;
-        pa.radius = now[b.pair.i].radius;
-        pb.position = now[b.pair.j].position;
-        pb.radius = now[b.pair.j].radius;
-        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
-        s.family = BondFamily::freeze;
-        s.tensileStrength = b.strength.tensile;
-        s.shearStrength = b.strength.shear;
-        states.push_back(s);
-    }
-    bonds_->addBonds(states);
+    bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
     std::ostringstream msg;
     msg << "Freeze-bonds: " << freezeStats_.bonds << " across the interface, confinement "
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, tensile strength " << freezeStats_.meanTensile*1e-3

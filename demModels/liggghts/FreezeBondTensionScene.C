@@ -1,5 +1,6 @@
 #include "FreezeBondTensionScene.H"
 
+#include "AppMain.H"
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "InputError.H"
@@ -25,15 +26,6 @@ constexpr int bodyType = 1;
 constexpr int lowerGripType = 2;
 constexpr int upperGripType = 3;
 
-double positiveEntry(const Dictionary& d, const std::string& key, double def)
-{
-    const double v = d.getScalarOrDefault(key, def);
-    if (!(v > 0.0))
-    {
-        d.fail(key, "must be positive");
-    }
-    return v;
-}
 
 } // namespace
 
@@ -53,22 +45,10 @@ TensionTestSettings TensionTestSettings::read(int argc, char** argv)
             }
             return std::string(argv[++k]);
         };
-        auto number = [&]()
-        {
-            const std::string v = value();
-            try
-            {
-                std::size_t used = 0;
-                const double x = std::stod(v, &used);
-                if (used == v.size() && x > 0.0) return x;
-            }
-            catch (const std::exception&) {}
-            throw InputError("command line", arg, "needs a positive number, got '" + v + "'");
-        };
         if (arg == "-case") s.caseDir = value();
         else if (arg == "-label") s.label = value();
-        else if (arg == "-pressure") pressure = number();
-        else if (arg == "-time") time = number();
+        else if (arg == "-pressure") pressure = positiveNumberArgument(argc, argv, k);
+        else if (arg == "-time") time = positiveNumberArgument(argc, argv, k);
         else
         {
             throw InputError("command line", arg,
@@ -80,10 +60,10 @@ TensionTestSettings TensionTestSettings::read(int argc, char** argv)
     s.specimen = SpecimenGeometry::read(d.subDict("specimen"), s.specimen);
     const Dictionary& l = d.subDict("loading");
     l.checkKeys({"confinementPressure", "confinementTime", "pullSpeed", "maxPull", "samples"});
-    s.confinementPressure = positiveEntry(l, "confinementPressure", s.confinementPressure);
-    s.confinementTime = positiveEntry(l, "confinementTime", s.confinementTime);
-    s.pullSpeed = positiveEntry(l, "pullSpeed", s.pullSpeed);
-    s.maxPull = positiveEntry(l, "maxPull", s.maxPull);
+    s.confinementPressure = l.getPositiveScalarOrDefault("confinementPressure", s.confinementPressure);
+    s.confinementTime = l.getPositiveScalarOrDefault("confinementTime", s.confinementTime);
+    s.pullSpeed = l.getPositiveScalarOrDefault("pullSpeed", s.pullSpeed);
+    s.maxPull = l.getPositiveScalarOrDefault("maxPull", s.maxPull);
     s.samples = l.getLabelOrDefault("samples", s.samples);
     if (s.samples < 10) l.fail("samples", "must be at least 10");
     if (pressure > 0.0) s.confinementPressure = pressure;

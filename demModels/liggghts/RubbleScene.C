@@ -37,15 +37,6 @@ constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 constexpr int wallType = 3;
 
-double positive(const Dictionary& d, const std::string& key, double def)
-{
-    const double v = d.getScalarOrDefault(key, def);
-    if (!(v > 0.0))
-    {
-        d.fail(key, "must be positive");
-    }
-    return v;
-}
 
 //- A 3 x 3 per-type-pair matrix for `property/global ... peratomtypepair 3`:
 //  `ice` between particles, `wall` wherever the wall type is involved.
@@ -97,9 +88,9 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     d.checkKeys({"box", "blocks", "settling", "ends"});
     const Dictionary& box = d.subDict("box");
     box.checkKeys({"length", "width", "height"});
-    s.boxLength = positive(box, "length", s.boxLength);
-    s.boxWidth = positive(box, "width", s.boxWidth);
-    s.boxHeight = positive(box, "height", s.boxHeight);
+    s.boxLength = box.getPositiveScalarOrDefault("length", s.boxLength);
+    s.boxWidth = box.getPositiveScalarOrDefault("width", s.boxWidth);
+    s.boxHeight = box.getPositiveScalarOrDefault("height", s.boxHeight);
 
     const Dictionary& b = d.subDict("blocks");
     b.checkKeys({"shape", "sizes", "syntheticCoeffs", "particleDiameter", "layers", "rubbleThickness",
@@ -117,21 +108,21 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
         const Dictionary& c = b.subDict("syntheticCoeffs");
         c.checkKeys({"minWidth", "maxWidth", "minAspect", "maxAspect", "minAreaFraction", "maxAreaFraction"});
         auto& p = s.synthetic;
-        p.minWidth = positive(c, "minWidth", p.minWidth);
-        p.maxWidth = positive(c, "maxWidth", p.maxWidth);
-        p.minAspect = positive(c, "minAspect", p.minAspect);
-        p.maxAspect = positive(c, "maxAspect", p.maxAspect);
-        p.minAreaFraction = positive(c, "minAreaFraction", p.minAreaFraction);
-        p.maxAreaFraction = positive(c, "maxAreaFraction", p.maxAreaFraction);
+        p.minWidth = c.getPositiveScalarOrDefault("minWidth", p.minWidth);
+        p.maxWidth = c.getPositiveScalarOrDefault("maxWidth", p.maxWidth);
+        p.minAspect = c.getPositiveScalarOrDefault("minAspect", p.minAspect);
+        p.maxAspect = c.getPositiveScalarOrDefault("maxAspect", p.maxAspect);
+        p.minAreaFraction = c.getPositiveScalarOrDefault("minAreaFraction", p.minAreaFraction);
+        p.maxAreaFraction = c.getPositiveScalarOrDefault("maxAreaFraction", p.maxAreaFraction);
         if (p.maxWidth < p.minWidth) c.fail("maxWidth", "must be at least minWidth");
         if (p.minAspect < 1.0 || p.maxAspect < p.minAspect) c.fail("maxAspect", "need 1 <= minAspect <= maxAspect");
         if (p.maxAreaFraction > 1.0 || p.maxAreaFraction < p.minAreaFraction)
             c.fail("maxAreaFraction", "need 0 < minAreaFraction <= maxAreaFraction <= 1");
     }
-    s.particleDiameter = positive(b, "particleDiameter", s.particleDiameter);
+    s.particleDiameter = b.getPositiveScalarOrDefault("particleDiameter", s.particleDiameter);
     s.layers = b.getLabelOrDefault("layers", s.layers);
     if (s.layers < 1) b.fail("layers", "must be at least 1");
-    s.rubbleThickness = positive(b, "rubbleThickness", s.rubbleThickness);
+    s.rubbleThickness = b.getPositiveScalarOrDefault("rubbleThickness", s.rubbleThickness);
     s.expectedPorosity = b.getScalarOrDefault("expectedPorosity", s.expectedPorosity);
     if (!(s.expectedPorosity >= 0.0 && s.expectedPorosity < 0.9)) b.fail("expectedPorosity", "must lie in [0, 0.9)");
     s.seed = static_cast<unsigned>(b.getLabelOrDefault("seed", static_cast<int>(s.seed)));
@@ -140,7 +131,7 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     st.checkKeys({"youngsModulus", "dampingAlpha", "maxTime", "minTime", "kineticEnergyThreshold",
                   "checkInterval", "checkpointInterval", "sheetGap", "firstSheetClearance", "maxTilt",
                   "frictionCoefficient"});
-    s.settlingYoungsModulus = positive(st, "youngsModulus", s.settlingYoungsModulus);
+    s.settlingYoungsModulus = st.getPositiveScalarOrDefault("youngsModulus", s.settlingYoungsModulus);
     s.settlingDampingAlpha = st.getScalarOrDefault("dampingAlpha", s.settlingDampingAlpha);
     if (!(s.settlingDampingAlpha >= 0.0 && s.settlingDampingAlpha < 1.0)) st.fail("dampingAlpha", "must lie in [0, 1)");
     if (st.found("frictionCoefficient"))
@@ -148,12 +139,12 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
         s.settlingFriction = st.getScalar("frictionCoefficient");
         if (!(s.settlingFriction >= 0.0)) st.fail("frictionCoefficient", "must not be negative");
     }
-    s.maxTime = positive(st, "maxTime", s.maxTime);
+    s.maxTime = st.getPositiveScalarOrDefault("maxTime", s.maxTime);
     s.minTime = st.getScalarOrDefault("minTime", s.minTime);
-    s.kineticEnergyThreshold = positive(st, "kineticEnergyThreshold", s.kineticEnergyThreshold);
-    s.checkInterval = positive(st, "checkInterval", s.checkInterval);
-    s.checkpointInterval = positive(st, "checkpointInterval", s.checkpointInterval);
-    s.sheetGap = positive(st, "sheetGap", s.sheetGap);
+    s.kineticEnergyThreshold = st.getPositiveScalarOrDefault("kineticEnergyThreshold", s.kineticEnergyThreshold);
+    s.checkInterval = st.getPositiveScalarOrDefault("checkInterval", s.checkInterval);
+    s.checkpointInterval = st.getPositiveScalarOrDefault("checkpointInterval", s.checkpointInterval);
+    s.sheetGap = st.getPositiveScalarOrDefault("sheetGap", s.sheetGap);
     s.firstSheetClearance = st.getScalarOrDefault("firstSheetClearance", s.firstSheetClearance);
     s.maxTilt = st.getScalarOrDefault("maxTilt", s.maxTilt);
     if (!(s.maxTilt >= 0.0 && s.maxTilt <= 90.0)) st.fail("maxTilt", "must lie in [0, 90] degrees");
@@ -573,22 +564,7 @@ void RubbleScene::freezeBond()
     // The contact forces are those of the contact model the rubble settled with.
     freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, settlingContact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
-    const BondModel model(ice_.family(BondFamily::freeze), ice_.damping);
-    std::vector<BondState> states;
-    for (const NewFreezeBond& b : freezeBonds_)
-    {
-        ParticleState pa, pb;
-        pa.position = now[b.pair.i].position;
-        pa.radius = now[b.pair.i].radius;
-        pb.position = now[b.pair.j].position;
-        pb.radius = now[b.pair.j].radius;
-        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
-        s.family = BondFamily::freeze;
-        s.tensileStrength = b.strength.tensile;
-        s.shearStrength = b.strength.shear;
-        states.push_back(s);
-    }
-    bonds_->addBonds(states);
+    bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
 
     // The beam's two ends are fixed to the box.
     LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
