@@ -350,23 +350,6 @@ double BeamScene::platenForce() const
 }
 
 
-double BeamScene::localKineticEnergy() const
-{
-    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
-    double e = 0.0;
-    for (int i = 0; i < atom.nlocal; ++i)
-    {
-        const double m = atom.rmass[i];
-        const double inertia = 0.4 * m * atom.radius[i] * atom.radius[i];
-        for (int k = 0; k < 3; ++k)
-        {
-            e += 0.5 * m * atom.v[i][k] * atom.v[i][k] + 0.5 * inertia * atom.omega[i][k] * atom.omega[i][k];
-        }
-    }
-    return e;
-}
-
-
 long BeamScene::freezeEjecta()
 {
     // Without gravity or water nothing stops a piece that breaks off: a
@@ -567,7 +550,7 @@ void BeamScene::run()
         const double force = platenForce();
         st.platenWork += 0.5 * (force + st.previousForce) * speed * chunk * dt_;
         st.previousForce = force;
-        const double kinetic = sumOverRanks(comm_, localKineticEnergy());
+        const double kinetic = totalKineticEnergy(*lmp_);
         const double elastic = sumOverRanks(comm_, bonds_->localBondEnergy());
         collectBreakEvents();
         curve_.addRow

@@ -98,7 +98,7 @@ void FreezeBondShearScene::confine()
     const double load = settings_.confinementPressure*area_;
     std::ostringstream fix;
     fix << std::setprecision(17)
-        << "fix lowerPlate lowerPlate addforce 0 0 " << load/specimen_.atomsOfType(lowerPlateType) << "\n";
+        << "fix lowerPlate lowerPlate addforce 0 0 " << load/specimen_.atomsOfType(lowerPlateType);
     lmp.command(fix.str());
     fix.str("");
     fix << "fix upperPlate upperPlate addforce 0 0 " << -load/specimen_.atomsOfType(upperPlateType);
@@ -194,10 +194,8 @@ void FreezeBondShearScene::writeSummary(double wallSeconds) const
     {
         return;
     }
-    const std::string dir = specimen_.path("postProcessing/runs/" + settings_.label);
-    std::filesystem::create_directories(dir);
+    const std::string dir = specimen_.writeRunRecord(settings_.label);
     curve_.write(dir + "/loadSlip.csv");
-    specimen_.breakage().writeHdf5(dir + "/breakage.h5");
     const double shearFactor = (1.0 - a_)/(1.0 + a_);
     const FreezeBondingStatistics& stats = specimen_.freezeStatistics();
     long shearBreaks = 0;
@@ -218,13 +216,8 @@ void FreezeBondShearScene::writeSummary(double wallSeconds) const
      .add("freeze_bonds", long(stats.bonds))
      .add("breaks_in_shear", shearBreaks)
      .add("breaks", long(specimen_.breakage().size()))
-     .add("confinement_pressure_Pa", settings_.confinementPressure)
-     .add("particles", long(specimen_.particles().size()))
-     .add("bonds", long(specimen_.iceBondCount() + specimen_.freezeBonds().size()))
-     .add("steps", specimen_.steps())
-     .add("dt", specimen_.dt())
-     .add("ranks", long(specimen_.ranks()))
-     .add("wall_s", wallSeconds);
+     .add("confinement_pressure_Pa", settings_.confinementPressure);
+    specimen_.addRunFigures(j, wallSeconds);
     writeFileAtomically(dir + "/summary.json", j.text() + "\n");
 }
 

@@ -258,21 +258,30 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
     {
         now[k].position = positions[k];
     }
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
     if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
     {
-        // The real frozen area is the specimen's cross-section, shared by the DEM bonds across it.
+        // The real frozen area is the specimen's cross-section, shared by the DEM bonds across
+        // it: c_f is known once the bonds are, and their strengths follow from it.
+        const BondFamilyParameters& family = ice_.family(BondFamily::freeze);
         double bondAreas = 0.0;
-        for (const NewFreezeBond& b : freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness))
+        for (const NewFreezeBond& b : freezeBonds_)
         {
-            bondAreas += bondArea(ice_.family(BondFamily::freeze), now[b.pair.i].radius, now[b.pair.j].radius);
+            bondAreas += bondArea(family, now[b.pair.i].radius, now[b.pair.j].radius);
         }
         if (bondAreas <= 0.0)
         {
             throw RunError("no contacts across the interface to freeze-bond");
         }
         strengthModel_.setAreaCorrection(interfaceArea/bondAreas);
+        for (NewFreezeBond& b : freezeBonds_)
+        {
+            b.strength = strengthModel_.strength
+            (
+                b.contactForce, bondArea(family, now[b.pair.i].radius, now[b.pair.j].radius)
+            );
+        }
     }
-    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
     bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
     std::ostringstream msg;
@@ -281,6 +290,26 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
         << " +- " << freezeStats_.sdTensile*1e-3 << " kPa, shear " << freezeStats_.meanShear*1e-3
         << " kPa on the bond area; " << strengthModel_.summary();
     log(msg.str());
+}
+
+
+std::string FreezeBondSpecimen::writeRunRecord(const std::string& label) const
+{
+    const std::string dir = path("postProcessing/runs/" + label);
+    std::filesystem::create_directories(dir);
+    breakage_.writeHdf5(dir + "/breakage.h5");
+    return dir;
+}
+
+
+void FreezeBondSpecimen::addRunFigures(JsonObject& j, double wallSeconds) const
+{
+    j.add("particles", long(particles_.size()))
+     .add("bonds", long(iceBonds_.size() + freezeBonds_.size()))
+     .add("steps", steps_)
+     .add("dt", dt_)
+     .add("ranks", long(ranks_))
+     .add("wall_s", wallSeconds);
 }
 
 

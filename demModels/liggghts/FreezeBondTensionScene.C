@@ -159,10 +159,8 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
     {
         return;
     }
-    const std::string dir = specimen_.path("postProcessing/runs/" + settings_.label);
-    std::filesystem::create_directories(dir);
+    const std::string dir = specimen_.writeRunRecord(settings_.label);
     curve_.write(dir + "/forceDisplacement.csv");
-    specimen_.breakage().writeHdf5(dir + "/breakage.h5");
     std::vector<double> strengths;
     for (const NewFreezeBond& b : specimen_.freezeBonds())
     {
@@ -188,13 +186,8 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
      .add("confinement_reaction_N", confinementReaction_)
      .add("bond_tensile_strength_mean_Pa", stats.meanTensile)
      .add("bond_tensile_strength_sd_Pa", stats.sdTensile)
-     .add("bond_tensile_strengths_Pa", strengths)
-     .add("particles", long(specimen_.particles().size()))
-     .add("bonds", long(specimen_.iceBondCount() + specimen_.freezeBonds().size()))
-     .add("steps", specimen_.steps())
-     .add("dt", specimen_.dt())
-     .add("ranks", long(specimen_.ranks()))
-     .add("wall_s", wallSeconds);
+     .add("bond_tensile_strengths_Pa", strengths);
+    specimen_.addRunFigures(j, wallSeconds);
     writeFileAtomically(dir + "/summary.json", j.text() + "\n");
 }
 

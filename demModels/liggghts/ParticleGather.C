@@ -37,6 +37,23 @@ std::vector<double> gatherDoubles(MPI_Comm comm, const std::vector<double>& loca
 }
 
 
+double totalKineticEnergy(const LiggghtsInstance& lmp)
+{
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    double e = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const double m = atom.rmass[i];
+        const double inertia = 0.4 * m * atom.radius[i] * atom.radius[i];
+        for (int k = 0; k < 3; ++k)
+        {
+            e += 0.5 * m * atom.v[i][k] * atom.v[i][k] + 0.5 * inertia * atom.omega[i][k] * atom.omega[i][k];
+        }
+    }
+    return sumOverRanks(lmp.communicator(), e);
+}
+
+
 std::vector<BondState> gatherBondStates(MPI_Comm comm, const IceBondForces& bonds)
 {
     std::vector<double> flat;

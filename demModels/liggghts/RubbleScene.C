@@ -368,23 +368,6 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
 }
 
 
-double RubbleScene::kineticEnergy() const
-{
-    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
-    double e = 0.0;
-    for (int i = 0; i < atom.nlocal; ++i)
-    {
-        const double m = atom.rmass[i];
-        const double inertia = 0.4*m*atom.radius[i]*atom.radius[i];
-        for (int k = 0; k < 3; ++k)
-        {
-            e += 0.5*m*atom.v[i][k]*atom.v[i][k] + 0.5*inertia*atom.omega[i][k]*atom.omega[i][k];
-        }
-    }
-    return sumOverRanks(comm_, e);
-}
-
-
 SavedRubble RubbleScene::gatherState(double time) const
 {
     const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
@@ -494,7 +477,7 @@ void RubbleScene::settle()
         first = false;
         steps_ += chunk;
         t += chunk*dt_;
-        ke = kineticEnergy()/n;
+        ke = totalKineticEnergy(*lmp_)/n;
         if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
         {
             throw RunError("settling blew up at t = " + jsonNumber(t) + " s (step " + std::to_string(steps_) + "): "
@@ -690,7 +673,7 @@ void RubbleScene::run()
         }
         const SavedRubble saved = SavedRubble::read(settled);
         startLiggghts(&saved, true);
-        layer_ = measureLayer(saved.time, kineticEnergy()/double(blockOfTag_.size()), true);
+        layer_ = measureLayer(saved.time, totalKineticEnergy(*lmp_)/double(blockOfTag_.size()), true);
     }
     else
     {
