@@ -17,7 +17,6 @@
 
 #include "atom.h"
 #include "group.h"
-#include "update.h"
 #include "fix.h"
 #include "lammps.h"
 
@@ -159,16 +158,10 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
         "sampleInterval", "writeInterval", "checkpointInterval"
     });
-    s.maxTravel = positive(control, "maxTravel", 0, true);
-    s.stopAfterHalfLoad = control.getBoolOrDefault("stopAfterHalfLoad", true);
-    s.travelAfterHalfLoad = control.getScalarOrDefault("travelAfterHalfLoad", 0.005);
-    s.sampleInterval = positive(control, "sampleInterval", 2e-4, false);
-    s.writeInterval = positive(control, "writeInterval", 0.01, false);
-    s.checkpointInterval = positive(control, "checkpointInterval", 0.02, false);
-    if (s.sampleInterval > s.writeInterval)
-    {
-        control.fail("sampleInterval", "must not exceed writeInterval");
-    }
+    s.loading.readControl(control);
+    s.loading.speed = s.platenSpeed;
+    s.loading.initialGap = s.initialGap;
+    s.loading.fixedSteps = options.steps;
     return s;
 }
 
@@ -176,8 +169,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
 BeamScene::BeamScene(MPI_Comm comm, const BeamSceneOptions& options)
 :
     comm_(comm),
-    options_(options),
-    curve_({"time", "travel", "force", "brokenBonds", "kineticEnergy", "bondEnergy"})
+    options_(options)
 {
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &ranks_);
@@ -261,7 +253,7 @@ void BeamScene::writeLiggghtsInputs() const
         particles_,
         ice_.material.density,
         Vec3(-margin, -settings_.initialGap - settings_.platenDiameter - margin, -margin),
-        Vec3(settings_.length + margin, settings_.width + settings_.maxTravel + margin, settings_.thickness + margin),
+        Vec3(settings_.length + margin, settings_.width + settings_.loading.maxTravel + margin, settings_.thickness + margin),
         2,
         [](const ParticleSpec& p) { return p.fixed ? fixedType : mobileType; }
     );
@@ -293,7 +285,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     const double skin = 0.2 * maxRadius;
 
     const std::string readParticles = resume
-        ? "read_restart " + path("DEM/checkpoint/liggghts.restart")
+        ? "read_restart " + loading_->restartFile()
         : "read_data " + path("DEM/packing.data");
     ScriptVariables variables
     {
@@ -323,17 +315,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     lmp.command("run 0");
     if (resume)
     {
-        // LIGGGHTS restores the step number but restarts its clock at zero.
-        LAMMPS_NS::Update& update = *lmp.engine().update;
-        if (update.ntimestep != resume->state.steps)
-        {
-            throw RunError(path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
-                + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
-                + std::to_string(resume->state.steps) + "; delete the folder and start again");
-        }
-        update.atime = resume->state.steps * dt_;
-        update.atimestep = update.ntimestep;
-        bonds_->restoreBonds(resume->bonds);
+        loading_->resumeFrom(*resume, lmp, *bonds_);
     }
     else
     {
@@ -361,7 +343,7 @@ long BeamScene::freezeEjecta()
     const Vec3 hi
     (
         settings_.length + clearance,
-        settings_.width + settings_.maxTravel + clearance,
+        settings_.width + settings_.loading.maxTravel + clearance,
         settings_.thickness + clearance
     );
     LAMMPS_NS::LAMMPS& engine = lmp_->engine();
@@ -390,286 +372,55 @@ long BeamScene::freezeEjecta()
 }
 
 
-void BeamScene::collectBreakEvents()
-{
-    const std::vector<BreakEvent> all = gatherBreakEvents(comm_, bonds_->takeLocalBreakEvents());
-    for (const BreakEvent& e : all)
-    {
-        breakage_.append(e);
-    }
-}
-
-
-void BeamScene::writeFrame(int frame)
-{
-    const GatheredState state = gatherState(*lmp_, *bonds_, fixedType);
-    if (rank_ != 0)
-    {
-        return;
-    }
-    BondFrame network;
-    auto addLink = [&](long a, long b, int family, int stateCode, int mode, double time)
-    {
-        const auto ia = state.indexOfTag.find(a);
-        const auto ib = state.indexOfTag.find(b);
-        if (ia == state.indexOfTag.end() || ib == state.indexOfTag.end())
-        {
-            return;
-        }
-        network.endA.push_back(state.particles.position[ia->second]);
-        network.endB.push_back(state.particles.position[ib->second]);
-        network.family.push_back(family);
-        network.state.push_back(stateCode);
-        network.mode.push_back(mode);
-        network.time.push_back(time);
-    };
-    for (const BondLink& l : state.links)
-    {
-        addLink(l.tagA, l.tagB, l.family, 0, 0, -1.0);
-    }
-    for (const BreakEvent& e : breakage_.events())
-    {
-        addLink(e.tagA, e.tagB, static_cast<int>(e.family), 1, static_cast<int>(e.mode), e.time);
-    }
-
-    std::ostringstream name;
-    name << std::setw(5) << std::setfill('0') << frame;
-    const std::string particlesFile = "particles_" + name.str() + ".vtp";
-    const std::string bondsFile = "bonds_" + name.str() + ".vtp";
-    writeParticlesVtp(path("VTK/" + particlesFile), state.particles);
-    writeBondsVtp(path("VTK/" + bondsFile), network);
-    if (!particlesPvd_)
-    {
-        particlesPvd_ = std::make_unique<PvdCollection>(path("VTK/particles.pvd"));
-        bondsPvd_ = std::make_unique<PvdCollection>(path("VTK/bonds.pvd"));
-    }
-    particlesPvd_->add(lmp_->time(), particlesFile);
-    bondsPvd_->add(lmp_->time(), bondsFile);
-    breakage_.writeHdf5(path("postProcessing/breakage.h5"));
-    curve_.write(path("postProcessing/platenForce.csv"));
-}
-
-
-void BeamScene::writeCheckpoint()
-{
-    // LIGGGHTS' restart first (particles, contacts, platen), then ours; a
-    // checkpoint counts only when both are complete, and ours names the step.
-    const std::string dir = path("DEM/checkpoint");
-    if (rank_ == 0)
-    {
-        std::filesystem::create_directories(dir);
-    }
-    MPI_Barrier(comm_);
-    lmp_->command("write_restart " + dir + "/liggghts.restart.tmp");
-    const std::vector<BondState> bonds = gatherBondStates(comm_, *bonds_);
-    if (rank_ == 0)
-    {
-        Checkpoint c;
-        c.state = loading_;
-        c.curveColumns = curve_.columns();
-        for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
-        c.breaks = breakage_.events();
-        c.bonds = bonds;
-        std::filesystem::rename(dir + "/liggghts.restart.tmp", dir + "/liggghts.restart");
-        c.write(dir + "/iceBeamDEM.checkpoint");
-    }
-    MPI_Barrier(comm_);
-}
-
-
 void BeamScene::run()
 {
     const auto wallStart = std::chrono::steady_clock::now();
     log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
         + std::to_string(ranks_) + " rank(s)");
     buildParticles();
-
+    loading_ = std::make_unique<PlatenLoading>
+    (
+        comm_, options_.caseDir, "iceBeamDEM", settings_.loading, dt_,
+        static_cast<long>(particles_.size()), fixedType
+    );
     std::unique_ptr<Checkpoint> resume;
     if (options_.resume)
     {
-        resume = std::make_unique<Checkpoint>(Checkpoint::read(path("DEM/checkpoint/iceBeamDEM.checkpoint")));
-        if (resume->state.dt != dt_)
-        {
-            throw InputError(path("constant/iceProperties"), "timeStep",
-                "the time step (" + number(dt_) + " s) differs from the checkpoint's ("
-                + number(resume->state.dt) + " s): the inputs changed since it was written");
-        }
+        resume = std::make_unique<Checkpoint>(loading_->readCheckpoint());
     }
     writeLiggghtsInputs();
     MPI_Barrier(comm_);
     startLiggghts(resume.get());
 
-    LoadingState& st = loading_;
-    st.dt = dt_;
-    if (resume)
-    {
-        st = resume->state;
-        for (const auto& row : resume->curveRows) curve_.addRow(row);
-        for (const BreakEvent& e : resume->breaks) breakage_.append(e);
-        particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/particles.pvd")));
-        bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/bonds.pvd")));
-        // Frames written after the checkpoint by the killed run are redone.
-        particlesPvd_->removeAfter(lmp_->time() + 0.5 * dt_);
-        bondsPvd_->removeAfter(lmp_->time() + 0.5 * dt_);
-        log("Resumed from the checkpoint at step " + std::to_string(st.steps) + ", time "
-            + number(lmp_->time()) + " s");
-    }
+    PlatenLoading::Hooks hooks;
+    hooks.force = [this] { return platenForce(); };
+    hooks.stopEjecta = [this] { return freezeEjecta(); };
+    loading_->run(*lmp_, *bonds_, hooks);
 
-    const double speed = settings_.platenSpeed;
-    const long stepsPerSample =
-        std::max(1L, std::lround(settings_.sampleInterval / (speed * dt_)));
-    const long samplesPerFrame =
-        std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
-    const long samplesPerCheckpoint =
-        std::max(1L, std::lround(settings_.checkpointInterval / settings_.sampleInterval));
-    const long maxSteps = options_.steps > 0
-        ? options_.steps
-        : std::lround((settings_.maxTravel + settings_.initialGap) / (speed * dt_));
-
-    std::ostringstream plan;
-    plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
-         << maxSteps << " steps (" << settings_.maxTravel * 1e3 << " mm of travel after contact)";
-    log(plan.str());
-
-    auto lastLog = std::chrono::steady_clock::now();
-    if (!resume)
-    {
-        writeFrame(st.frame++);
-    }
-    const long firstStep = st.steps;
-    const auto loopStart = std::chrono::steady_clock::now();
-
-    while (st.steps < maxSteps)
-    {
-        const long chunk = std::min(stepsPerSample, maxSteps - st.steps);
-        lmp_->command("run " + std::to_string(chunk) + " pre no post no");
-        st.steps += chunk;
-        ++st.sample;
-
-        const double travel = speed * lmp_->time();
-        const double force = platenForce();
-        st.platenWork += 0.5 * (force + st.previousForce) * speed * chunk * dt_;
-        st.previousForce = force;
-        const double kinetic = totalKineticEnergy(*lmp_);
-        const double elastic = sumOverRanks(comm_, bonds_->localBondEnergy());
-        collectBreakEvents();
-        curve_.addRow
-        ({
-            lmp_->time(), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic
-        });
-
-        const long frozen = freezeEjecta();
-        if (frozen > 0)
-        {
-            st.frozenEjecta += frozen;
-            log(std::to_string(frozen) + " particle(s) flew clear of the beam and were stopped "
-                "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
-        }
-        checkHealth(kinetic, st.platenWork);
-
-        if (force > st.peak)
-        {
-            st.peak = force;
-            st.travelAtPeak = travel;
-            st.kineticToElasticAtPeak = elastic > 0.0 ? kinetic / elastic : 0.0;
-        }
-        // Half load counts once the force stays below it; a dip that recovers
-        // (noise, a crack that arrests) does not.
-        if (force >= 0.5 * st.peak)
-        {
-            st.halfLoadTravel = -1.0;
-        }
-        else if (st.halfLoadTravel < 0.0 && st.peak > 0.0)
-        {
-            st.halfLoadTravel = travel;
-        }
-        const bool done = settings_.stopAfterHalfLoad && st.halfLoadTravel > 0.0
-            && travel > st.halfLoadTravel + settings_.travelAfterHalfLoad;
-
-        if (st.sample % samplesPerFrame == 0)
-        {
-            writeFrame(st.frame++);
-        }
-        if (st.sample % samplesPerCheckpoint == 0 && !done && st.steps < maxSteps)
-        {
-            writeCheckpoint();
-        }
-
-        const auto now = std::chrono::steady_clock::now();
-        if (std::chrono::duration<double>(now - lastLog).count() > 10.0)
-        {
-            lastLog = now;
-            const double elapsed = std::chrono::duration<double>(now - loopStart).count();
-            const double remaining = elapsed / (st.steps - firstStep) * (maxSteps - st.steps);
-            std::ostringstream line;
-            line << std::fixed << std::setprecision(1) << "t = " << lmp_->time() * 1e3 << " ms"
-                 << "  travel " << travel * 1e3 << " mm  force " << force * 1e-3 << " kN"
-                 << "  peak " << st.peak * 1e-3 << " kN  broken " << breakage_.size()
-                 << "  " << std::setprecision(0) << (st.steps - firstStep) * particles_.size() / elapsed
-                 << " particle-steps/s  ETA <= " << formatDuration(remaining);
-            log(line.str());
-        }
-
-        if (done)
-        {
-            log("Load has stayed below half the peak " + number(st.peak * 1e-3) + " kN since "
-                + number((st.halfLoadTravel - st.travelAtPeak) * 1e3) + " mm after it: stopping");
-            break;
-        }
-    }
-
-    const double loop =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
-    writeFrame(st.frame++);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    writeSummary(wall, loop, st.steps, st.steps - firstStep);
-    log("End: " + std::to_string(st.steps) + " steps in " + formatDuration(wall) + ", "
-        + std::to_string(breakage_.size()) + " bonds broken");
+    writeSummary(wall);
+    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+        + std::to_string(loading_->breakage().size()) + " bonds broken");
 }
 
 
-void BeamScene::checkHealth(double kinetic, double platenWork)
+void BeamScene::writeSummary(double wallSeconds) const
 {
-    // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
-    // that the platen never put in.
-    std::string failure = bonds_->failure();
-    const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
-    if (failure.empty() && present != static_cast<long>(particles_.size()))
-    {
-        failure = std::to_string(particles_.size() - present) + " particle(s) left the simulation box by time "
-            + number(lmp_->time()) + " s (step " + std::to_string(lmp_->step()) + ")";
-    }
-    int failed = failure.empty() ? 0 : 1, anyFailed = 0;
-    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
-    if (anyFailed == 0 && kinetic > 2.0 * std::abs(platenWork) + 1e-6)
-    {
-        std::ostringstream msg;
-        msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
-            << platenWork << " J) at time " << lmp_->time() << " s, step " << lmp_->step()
-            << ": the run is unstable (lower timeStep.factor)";
-        failure = msg.str();
-        anyFailed = 1;
-    }
-    if (anyFailed)
-    {
-        curve_.write(path("postProcessing/platenForce.csv"));
-        throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
-    }
-}
-
-
-void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps, long loopSteps) const
-{
+    const CsvWriter& forceCurve = loading_->curve();
+    const BreakageRecord& breaks = loading_->breakage();
+    const LoadingState& state = loading_->state();
+    const double loopSeconds = loading_->loopSeconds();
+    const long steps = state.steps, loopSteps = loading_->loopSteps();
     if (rank_ != 0)
     {
         return;
     }
     std::vector<double> travel, force;
-    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    for (std::size_t k = 0; k < forceCurve.nRows(); ++k)
     {
-        travel.push_back(curve_.row(k)[1]);
-        force.push_back(curve_.row(k)[2]);
+        travel.push_back(forceCurve.row(k)[1]);
+        force.push_back(forceCurve.row(k)[2]);
     }
     double peak = 0.0;
     for (double f : force) peak = std::max(peak, f);
@@ -689,7 +440,7 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps,
     const int bins = 10;
     std::vector<int> alongSpan(bins, 0);
     double centreBreaks = 0.0;
-    for (const BreakEvent& e : breakage_.events())
+    for (const BreakEvent& e : breaks.events())
     {
         const int bin = std::clamp(static_cast<int>(e.position.x() / settings_.length * bins), 0, bins - 1);
         ++alongSpan[bin];
@@ -718,21 +469,21 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps,
       << "  \"slope_error\": " << jsonNumber(rise.elasticSlope / fieldSlope - 1.0) << ",\n"
       << "  \"first_peak_error\": " << jsonNumber(first.force / fieldPeak - 1.0) << ",\n"
       << "  \"peak_error\": " << jsonNumber(r.peakForce / fieldPeak - 1.0) << ",\n"
-      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(loading_.kineticToElasticAtPeak) << ",\n"
+      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(state.kineticToElasticAtPeak) << ",\n"
       << "  \"crack_pattern\": {\n"
-      << "    \"broken_bonds\": " << breakage_.size() << ",\n"
-      << "    \"by_mode\": {\"tension\": " << breakage_.count(BreakMode::tension)
-      << ", \"shear\": " << breakage_.count(BreakMode::shear)
-      << ", \"twist\": " << breakage_.count(BreakMode::twist)
-      << ", \"bending\": " << breakage_.count(BreakMode::bending) << "},\n"
+      << "    \"broken_bonds\": " << breaks.size() << ",\n"
+      << "    \"by_mode\": {\"tension\": " << breaks.count(BreakMode::tension)
+      << ", \"shear\": " << breaks.count(BreakMode::shear)
+      << ", \"twist\": " << breaks.count(BreakMode::twist)
+      << ", \"bending\": " << breaks.count(BreakMode::bending) << "},\n"
       << "    \"share_within_10pct_of_span_from_centre\": "
-      << jsonNumber(breakage_.empty() ? 0.0 : centreBreaks / breakage_.size()) << ",\n"
+      << jsonNumber(breaks.empty() ? 0.0 : centreBreaks / breaks.size()) << ",\n"
       << "    \"along_span_histogram\": [";
     for (int b = 0; b < bins; ++b) j << (b ? ", " : "") << alongSpan[b];
     j << "]\n  },\n"
       << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
       << "  \"particles\": " << particles_.size() << ",\n"
-      << "  \"ejected_particles_stopped\": " << loading_.frozenEjecta << ",\n"
+      << "  \"ejected_particles_stopped\": " << state.frozenEjecta << ",\n"
       << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
       << "  \"bonds_per_particle\": " << bondStats_.meanBondsPerParticle << ",\n"
       << "  \"steps\": " << steps << ",\n"
@@ -746,9 +497,9 @@ void BeamScene::writeSummary(double wallSeconds, double loopSeconds, long steps,
 
     // The curve again, with displacement measured from first contact.
     CsvWriter curve({"time", "travel", "displacement", "force", "brokenBonds", "kineticEnergy", "bondEnergy"});
-    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    for (std::size_t k = 0; k < forceCurve.nRows(); ++k)
     {
-        const std::vector<double>& row = curve_.row(k);
+        const std::vector<double>& row = forceCurve.row(k);
         curve.addRow({row[0], row[1], row[1] - onset, row[2], row[3], row[4], row[5]});
     }
     curve.write(path("postProcessing/platenForce.csv"));

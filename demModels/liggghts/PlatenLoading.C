@@ -1,0 +1,412 @@
+#include "PlatenLoading.H"
+
+#include "Dictionary.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "JsonObject.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+
+#include "atom.h"
+#include "lammps.h"
+#include "update.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+std::string number(double v)
+{
+    std::ostringstream s;
+    s << std::setprecision(10) << v;
+    return s.str();
+}
+
+std::vector<std::string> curveColumns(const std::vector<std::string>& extras)
+{
+    std::vector<std::string> columns{"time", "travel", "force", "brokenBonds", "kineticEnergy", "bondEnergy"};
+    columns.insert(columns.end(), extras.begin(), extras.end());
+    return columns;
+}
+
+} // namespace
+
+
+void PlatenLoadingControl::readControl(const Dictionary& control)
+{
+    auto positive = [&](const std::string& key, double def)
+    {
+        const double v = control.getScalarOrDefault(key, def);
+        if (!(v > 0.0))
+        {
+            control.fail(key, number(v) + " is not allowed; expected a positive number");
+        }
+        return v;
+    };
+    maxTravel = control.getScalar("maxTravel");
+    if (!(maxTravel > 0.0))
+    {
+        control.fail("maxTravel", number(maxTravel) + " is not allowed; expected a positive number");
+    }
+    stopAfterHalfLoad = control.getBoolOrDefault("stopAfterHalfLoad", true);
+    travelAfterHalfLoad = control.getScalarOrDefault("travelAfterHalfLoad", 0.005);
+    if (travelAfterHalfLoad < 0.0)
+    {
+        control.fail("travelAfterHalfLoad", "must not be negative");
+    }
+    sampleInterval = positive("sampleInterval", 2e-4);
+    writeInterval = positive("writeInterval", 0.01);
+    checkpointInterval = positive("checkpointInterval", 0.02);
+    if (sampleInterval > writeInterval)
+    {
+        control.fail("sampleInterval", "must not exceed writeInterval");
+    }
+}
+
+
+PlatenLoading::PlatenLoading
+(
+    MPI_Comm comm,
+    const std::string& caseDir,
+    const std::string& application,
+    const PlatenLoadingControl& control,
+    double dt,
+    long particleCount,
+    int fixedType,
+    const std::vector<std::string>& extraColumns
+)
+:
+    comm_(comm),
+    caseDir_(caseDir),
+    application_(application),
+    control_(control),
+    particleCount_(particleCount),
+    fixedType_(fixedType),
+    curve_(curveColumns(extraColumns))
+{
+    MPI_Comm_rank(comm_, &rank_);
+    state_.dt = dt;
+}
+
+
+PlatenLoading::~PlatenLoading() = default;
+
+
+std::string PlatenLoading::path(const std::string& relative) const
+{
+    return caseDir_ + "/" + relative;
+}
+
+
+void PlatenLoading::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+std::string PlatenLoading::restartFile() const
+{
+    return path("DEM/checkpoint/liggghts.restart");
+}
+
+
+bool PlatenLoading::checkpointExists() const
+{
+    return std::filesystem::exists(path("DEM/checkpoint/" + application_ + ".checkpoint"))
+        && std::filesystem::exists(restartFile());
+}
+
+
+Checkpoint PlatenLoading::readCheckpoint() const
+{
+    Checkpoint c = Checkpoint::read(path("DEM/checkpoint/" + application_ + ".checkpoint"));
+    if (c.state.dt != state_.dt)
+    {
+        throw InputError(path("constant/iceProperties"), "timeStep",
+            "the time step (" + number(state_.dt) + " s) differs from the checkpoint's ("
+            + number(c.state.dt) + " s): the inputs changed since it was written");
+    }
+    if (c.curveColumns != curve_.columns())
+    {
+        throw RunError(path("DEM/checkpoint") + ": the checkpoint's force curve has other columns; "
+            "it was written by another version of " + application_ + ": delete the folder and start again");
+    }
+    return c;
+}
+
+
+void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBondForces& bonds)
+{
+    // LIGGGHTS restores the step number but restarts its clock at zero.
+    LAMMPS_NS::Update& update = *lmp.engine().update;
+    if (update.ntimestep != c.state.steps)
+    {
+        throw RunError(path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
+            + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
+            + std::to_string(c.state.steps) + "; delete the folder and start again");
+    }
+    update.atime = c.state.steps * state_.dt;
+    update.atimestep = update.ntimestep;
+    bonds.restoreBonds(c.bonds);
+
+    state_ = c.state;
+    for (const auto& row : c.curveRows) curve_.addRow(row);
+    for (const BreakEvent& e : c.breaks) breakage_.append(e);
+    particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/particles.pvd")));
+    bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/bonds.pvd")));
+    // Frames written after the checkpoint by the killed run are redone.
+    particlesPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
+    bondsPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
+    resumed_ = true;
+    log("Resumed from the checkpoint at step " + std::to_string(state_.steps) + ", time "
+        + number(lmp.time()) + " s");
+}
+
+
+void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks)
+{
+    LoadingState& st = state_;
+    const double speed = control_.speed;
+    const double dt = st.dt;
+    const long stepsPerSample = std::max(1L, std::lround(control_.sampleInterval / (speed * dt)));
+    const long samplesPerFrame = std::max(1L, std::lround(control_.writeInterval / control_.sampleInterval));
+    const long samplesPerCheckpoint =
+        std::max(1L, std::lround(control_.checkpointInterval / control_.sampleInterval));
+    const long maxSteps = control_.fixedSteps > 0
+        ? control_.fixedSteps
+        : std::lround((control_.maxTravel + control_.initialGap) / (speed * dt));
+
+    std::ostringstream plan;
+    plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
+         << maxSteps << " steps (" << control_.maxTravel * 1e3 << " mm of travel after contact)";
+    log(plan.str());
+
+    if (!resumed_)
+    {
+        writeFrame(lmp, bonds);
+    }
+    firstStep_ = st.steps;
+    const auto loopStart = std::chrono::steady_clock::now();
+    auto lastLog = loopStart;
+
+    while (st.steps < maxSteps)
+    {
+        const long chunk = std::min(stepsPerSample, maxSteps - st.steps);
+        lmp.command("run " + std::to_string(chunk) + " pre no post no");
+        st.steps += chunk;
+        ++st.sample;
+        sample(lmp, bonds, hooks, chunk);
+
+        const double travel = speed * lmp.time();
+        // Half load counts once the force stays below it; a dip that recovers
+        // (noise, a crack that arrests) does not.
+        if (st.previousForce >= 0.5 * st.peak)
+        {
+            st.halfLoadTravel = -1.0;
+        }
+        else if (st.halfLoadTravel < 0.0 && st.peak > 0.0)
+        {
+            st.halfLoadTravel = travel;
+        }
+        const bool done = control_.stopAfterHalfLoad && st.halfLoadTravel > 0.0
+            && travel > st.halfLoadTravel + control_.travelAfterHalfLoad;
+
+        if (st.sample % samplesPerFrame == 0)
+        {
+            writeFrame(lmp, bonds);
+        }
+        if (st.sample % samplesPerCheckpoint == 0 && !done && st.steps < maxSteps)
+        {
+            writeCheckpoint(lmp, bonds);
+        }
+
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - lastLog).count() > 10.0)
+        {
+            lastLog = now;
+            const double elapsed = std::chrono::duration<double>(now - loopStart).count();
+            const double remaining = elapsed / (st.steps - firstStep_) * (maxSteps - st.steps);
+            std::ostringstream line;
+            line << std::fixed << std::setprecision(1) << "t = " << lmp.time() * 1e3 << " ms"
+                 << "  travel " << travel * 1e3 << " mm  force " << st.previousForce * 1e-3 << " kN"
+                 << "  peak " << st.peak * 1e-3 << " kN  broken " << breakage_.size()
+                 << "  " << std::setprecision(0) << (st.steps - firstStep_) * particleCount_ / elapsed
+                 << " particle-steps/s  ETA <= " << formatDuration(remaining);
+            log(line.str());
+        }
+
+        if (done)
+        {
+            log("Load has stayed below half the peak " + number(st.peak * 1e-3) + " kN since "
+                + number((st.halfLoadTravel - st.travelAtPeak) * 1e3) + " mm after it: stopping");
+            break;
+        }
+    }
+    loopSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
+    writeFrame(lmp, bonds);
+}
+
+
+void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, long chunk)
+{
+    LoadingState& st = state_;
+    const double travel = control_.speed * lmp.time();
+    const double force = hooks.force();
+    st.platenWork += 0.5 * (force + st.previousForce) * control_.speed * chunk * st.dt;
+    st.previousForce = force;
+    const double kinetic = totalKineticEnergy(lmp);
+    const double elastic = sumOverRanks(comm_, bonds.localBondEnergy());
+    for (const BreakEvent& e : gatherBreakEvents(comm_, bonds.takeLocalBreakEvents()))
+    {
+        breakage_.append(e);
+    }
+    std::vector<double> row{lmp.time(), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic};
+    if (hooks.extras)
+    {
+        const std::vector<double> extra = hooks.extras();
+        row.insert(row.end(), extra.begin(), extra.end());
+    }
+    curve_.addRow(row);
+
+    if (hooks.stopEjecta)
+    {
+        const long stopped = hooks.stopEjecta();
+        if (stopped > 0)
+        {
+            st.frozenEjecta += stopped;
+            log(std::to_string(stopped) + " particle(s) flew clear of the body and were stopped "
+                "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
+        }
+    }
+    checkHealth(lmp, bonds, kinetic);
+
+    if (force > st.peak)
+    {
+        st.peak = force;
+        st.travelAtPeak = travel;
+        st.kineticToElasticAtPeak = elastic > 0.0 ? kinetic / elastic : 0.0;
+    }
+}
+
+
+void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, double kinetic) const
+{
+    // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
+    // that the platen never put in.
+    std::string failure = bonds.failure();
+    const long present = sumOverRanks(comm_, static_cast<long>(lmp.engine().atom->nlocal));
+    if (failure.empty() && present != particleCount_)
+    {
+        failure = std::to_string(particleCount_ - present) + " particle(s) left the simulation box by time "
+            + number(lmp.time()) + " s (step " + std::to_string(lmp.step()) + ")";
+    }
+    int failed = failure.empty() ? 0 : 1, anyFailed = 0;
+    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
+    if (anyFailed == 0 && kinetic > 2.0 * std::abs(state_.platenWork) + 1e-6)
+    {
+        std::ostringstream msg;
+        msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
+            << state_.platenWork << " J) at time " << lmp.time() << " s, step " << lmp.step()
+            << ": the run is unstable (lower timeStep.factor)";
+        failure = msg.str();
+        anyFailed = 1;
+    }
+    if (anyFailed)
+    {
+        curve_.write(path("postProcessing/platenForce.csv"));
+        throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
+    }
+}
+
+
+void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
+{
+    const GatheredState gathered = gatherState(lmp, bonds, fixedType_);
+    const int frame = state_.frame++;
+    if (rank_ != 0)
+    {
+        return;
+    }
+    BondFrame network;
+    auto addLink = [&](long a, long b, int family, int stateCode, int mode, double time)
+    {
+        const auto ia = gathered.indexOfTag.find(a);
+        const auto ib = gathered.indexOfTag.find(b);
+        if (ia == gathered.indexOfTag.end() || ib == gathered.indexOfTag.end())
+        {
+            return;
+        }
+        network.endA.push_back(gathered.particles.position[ia->second]);
+        network.endB.push_back(gathered.particles.position[ib->second]);
+        network.family.push_back(family);
+        network.state.push_back(stateCode);
+        network.mode.push_back(mode);
+        network.time.push_back(time);
+    };
+    for (const BondLink& l : gathered.links)
+    {
+        addLink(l.tagA, l.tagB, l.family, 0, 0, -1.0);
+    }
+    for (const BreakEvent& e : breakage_.events())
+    {
+        addLink(e.tagA, e.tagB, static_cast<int>(e.family), 1, static_cast<int>(e.mode), e.time);
+    }
+
+    std::ostringstream name;
+    name << std::setw(5) << std::setfill('0') << frame;
+    const std::string particlesFile = "particles_" + name.str() + ".vtp";
+    const std::string bondsFile = "bonds_" + name.str() + ".vtp";
+    writeParticlesVtp(path("VTK/" + particlesFile), gathered.particles);
+    writeBondsVtp(path("VTK/" + bondsFile), network);
+    if (!particlesPvd_)
+    {
+        particlesPvd_ = std::make_unique<PvdCollection>(path("VTK/particles.pvd"));
+        bondsPvd_ = std::make_unique<PvdCollection>(path("VTK/bonds.pvd"));
+    }
+    particlesPvd_->add(lmp.time(), particlesFile);
+    bondsPvd_->add(lmp.time(), bondsFile);
+    breakage_.writeHdf5(path("postProcessing/breakage.h5"));
+    curve_.write(path("postProcessing/platenForce.csv"));
+}
+
+
+void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
+{
+    // LIGGGHTS' restart first (particles, contacts, platen), then ours; a
+    // checkpoint counts only when both are complete, and ours names the step.
+    const std::string dir = path("DEM/checkpoint");
+    if (rank_ == 0)
+    {
+        std::filesystem::create_directories(dir);
+    }
+    MPI_Barrier(comm_);
+    lmp.command("write_restart " + dir + "/liggghts.restart.tmp");
+    const std::vector<BondState> bondStates = gatherBondStates(comm_, bonds);
+    if (rank_ == 0)
+    {
+        Checkpoint c;
+        c.state = state_;
+        c.curveColumns = curve_.columns();
+        for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
+        c.breaks = breakage_.events();
+        c.bonds = bondStates;
+        std::filesystem::rename(dir + "/liggghts.restart.tmp", restartFile());
+        c.write(dir + "/" + application_ + ".checkpoint");
+    }
+    MPI_Barrier(comm_);
+}
+
+} // namespace iceDEM
