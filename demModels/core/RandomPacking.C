@@ -437,6 +437,27 @@ std::vector<ParticleSpec> buildRandomPacking(const RandomPackingSpec& spec, Rand
 }
 
 
+int particleCountForDiameter
+(
+    const Vec3& lo,
+    const Vec3& hi,
+    double meanDiameter,
+    double radiusSpread,
+    double solidFraction
+)
+{
+    if (!(meanDiameter > 0.0) || !(solidFraction > 0.0) || radiusSpread < 0.0 || radiusSpread >= 1.0)
+    {
+        invalid("the mean diameter and solid fraction must be positive, the radius spread in [0, 1)");
+    }
+    // Mean sphere volume of radii uniform in r0 (1 -+ s): r0^3 (1 + s^2).
+    const double r0 = 0.5 * meanDiameter;
+    const double meanVolume = 4.0 / 3.0 * M_PI * r0 * r0 * r0 * (1.0 + radiusSpread * radiusSpread);
+    const double boxVolume = (hi - lo).prod();
+    return std::max(1, static_cast<int>(std::lround(solidFraction * boxVolume / meanVolume)));
+}
+
+
 std::vector<ParticleSpec> buildRandomPacking(const RandomPackingSpec& spec)
 {
     RandomPackingStats stats;

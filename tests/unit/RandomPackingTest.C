@@ -291,3 +291,15 @@ TEST(RandomPacking, FixedPadsOfABeamPacking)
     EXPECT_GT(fixed, 0.10*particles.size());
     EXPECT_LT(fixed, 0.16*particles.size());
 }
+
+
+TEST(RandomPacking, CountForDiameterFillsTheSheetToTheSolidFraction)
+{
+    // 0.94 x 1 x 0.1 m sheet of 50 mm spheres at 0.6: 0.6 * 0.094 / (pi 0.05^3 / 6) = 861.7
+    const Vec3 lo = Vec3::Zero(), hi(0.94, 1.0, 0.1);
+    EXPECT_EQ(particleCountForDiameter(lo, hi, 0.05, 0.0, 0.6), 862);
+    // A spread of radii raises the mean volume by (1 + s^2): fewer particles.
+    EXPECT_EQ(particleCountForDiameter(lo, hi, 0.05, 0.2, 0.6), static_cast<int>(std::lround(861.65 / 1.04)));
+    EXPECT_THROW(particleCountForDiameter(lo, hi, 0.0, 0.0, 0.6), std::invalid_argument);
+    EXPECT_THROW(particleCountForDiameter(lo, hi, 0.05, 1.0, 0.6), std::invalid_argument);
+}
