@@ -216,4 +216,34 @@ std::string BondStatistics::summary() const
     return os.str();
 }
 
+std::vector<BondState> newBondStates
+(
+    const std::vector<BondPair>& pairs,
+    const std::vector<ParticleSpec>& particles,
+    const IceProperties& ice
+)
+{
+    const BondModel models[nBondFamilies] =
+    {
+        BondModel(ice.family(BondFamily::ice), ice.damping),
+        BondModel(ice.family(BondFamily::freeze), ice.damping)
+    };
+    auto state = [&](int index)
+    {
+        ParticleState p;
+        p.position = particles[index].position;
+        p.radius = particles[index].radius;
+        return p;
+    };
+    std::vector<BondState> states;
+    states.reserve(pairs.size());
+    for (const BondPair& pair : pairs)
+    {
+        BondState s = models[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, state(pair.i), state(pair.j));
+        s.family = pair.family;
+        states.push_back(s);
+    }
+    return states;
+}
+
 } // namespace iceDEM

@@ -80,20 +80,16 @@ std::vector<BondState> freezeBondStates
     const IceProperties& ice
 )
 {
-    const BondModel model(ice.family(BondFamily::freeze), ice.damping);
-    std::vector<BondState> states;
+    std::vector<BondPair> pairs;
     for (const NewFreezeBond& b : bonds)
     {
-        ParticleState pa, pb;
-        pa.position = now[b.pair.i].position;
-        pa.radius = now[b.pair.i].radius;
-        pb.position = now[b.pair.j].position;
-        pb.radius = now[b.pair.j].radius;
-        BondState s = model.create(b.pair.i + 1, b.pair.j + 1, pa, pb);
-        s.family = BondFamily::freeze;
-        s.tensileStrength = b.strength.tensile;
-        s.shearStrength = b.strength.shear;
-        states.push_back(s);
+        pairs.push_back(b.pair);
+    }
+    std::vector<BondState> states = newBondStates(pairs, now, ice);
+    for (std::size_t k = 0; k < bonds.size(); ++k)
+    {
+        states[k].tensileStrength = bonds[k].strength.tensile;
+        states[k].shearStrength = bonds[k].strength.shear;
     }
     return states;
 }

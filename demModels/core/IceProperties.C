@@ -210,4 +210,18 @@ IceProperties IceProperties::read(const std::string& path)
     return props;
 }
 
+IceProperties IceProperties::softenedForAssembly(double youngsModulus, double dampingAlpha) const
+{
+    IceProperties soft = *this;
+    soft.material.youngsModulus = youngsModulus;
+    for (BondFamilyParameters& f : soft.families)
+    {
+        f.youngsModulus = youngsModulus;
+        f.unbreakable = true;
+    }
+    soft.damping.model = DampingModel::hysteretic;
+    soft.damping.alpha = dampingAlpha;
+    return soft;
+}
+
 } // namespace iceDEM

@@ -124,4 +124,34 @@ void writeCylinderStl
     });
 }
 
+void writeBoxStl(const std::string& path, const Vec3& lo, const Vec3& hi, const std::string& solidName)
+{
+    if (!((hi - lo).array() > 0.0).all() || !lo.allFinite() || !hi.allFinite() || solidName.empty())
+    {
+        throw std::invalid_argument("writeBoxStl: the box needs hi > lo in every direction and a name");
+    }
+    auto corner = [&](int bits)
+    {
+        return Vec3(bits & 1 ? hi.x() : lo.x(), bits & 2 ? hi.y() : lo.y(), bits & 4 ? hi.z() : lo.z());
+    };
+    // Each face as four corners counter-clockwise seen from outside.
+    const int faces[6][4] =
+    {
+        {0, 4, 6, 2}, {1, 3, 7, 5},     // x = lo, x = hi
+        {0, 1, 5, 4}, {2, 6, 7, 3},     // y = lo, y = hi
+        {0, 2, 3, 1}, {4, 5, 7, 6}      // z = lo, z = hi
+    };
+    writeStreamAtomically(path, [&](std::ostream& out)
+    {
+        out.precision(12);
+        out << "solid " << solidName << "\n";
+        for (const auto& f : faces)
+        {
+            writeFacet(out, corner(f[0]), corner(f[1]), corner(f[2]));
+            writeFacet(out, corner(f[0]), corner(f[2]), corner(f[3]));
+        }
+        out << "endsolid " << solidName << "\n";
+    });
+}
+
 } // namespace iceDEM

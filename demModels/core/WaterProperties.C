@@ -44,8 +44,18 @@ HydrostaticWaterParameters readHydrostatic(const Dictionary& d)
     d.checkKeys({"surfaceLevel", "rho", "mu", "addedMassCoefficient", "drag"});
 
     HydrostaticWaterParameters p;
-    if (!d.found("surfaceLevel")) d.fail("surfaceLevel", "missing; expected the z of the water surface in m");
-    p.surfaceLevel = d.getScalar("surfaceLevel");
+    if (!d.found("surfaceLevel"))
+    {
+        d.fail("surfaceLevel", "missing; expected the z of the water surface in m, or floating");
+    }
+    if (d.getString("surfaceLevel") == "floating")
+    {
+        p.floatingSurface = true;
+    }
+    else
+    {
+        p.surfaceLevel = d.getScalar("surfaceLevel");
+    }
     p.density = positiveScalar(d, "rho", "kg/m3");
     p.viscosity = positiveScalar(d, "mu", "Pa s");
     p.addedMassCoefficient = d.getScalarOrDefault("addedMassCoefficient", 0.5);
@@ -79,7 +89,12 @@ Vec3 readGravity(const std::string& file)
 } // namespace
 
 
-WaterProperties WaterProperties::read(const std::string& couplingFile, const std::string& gravityFile)
+WaterProperties WaterProperties::read
+(
+    const std::string& couplingFile,
+    const std::string& gravityFile,
+    bool floatingSurfaceAllowed
+)
 {
     const Dictionary dict = Dictionary::readFile(couplingFile);
     WaterProperties w;
@@ -95,7 +110,13 @@ WaterProperties WaterProperties::read(const std::string& couplingFile, const std
             dict.fail("hydrostatic", "missing; waterLevel hydrostatic needs a sub-dictionary"
                       " hydrostatic { surfaceLevel; rho; mu; }");
         }
-        w.hydrostatic = readHydrostatic(dict.subDict("hydrostatic"));
+        const Dictionary& hydrostatic = dict.subDict("hydrostatic");
+        w.hydrostatic = readHydrostatic(hydrostatic);
+        if (w.hydrostatic.floatingSurface && !floatingSurfaceAllowed)
+        {
+            hydrostatic.fail("surfaceLevel", "floating is only for scenes that assemble floating ice "
+                "(ridgeDEM); expected the z of the water surface in m");
+        }
     }
     if (!gravityFile.empty())
     {
@@ -111,10 +132,10 @@ WaterProperties WaterProperties::read(const std::string& couplingFile, const std
 }
 
 
-WaterProperties WaterProperties::readCase(const std::string& caseDir)
+WaterProperties WaterProperties::readCase(const std::string& caseDir, bool floatingSurfaceAllowed)
 {
     const std::string g = caseDir + "/constant/g";
-    return read(caseDir + "/constant/couplingProperties", std::filesystem::exists(g) ? g : "");
+    return read(caseDir + "/constant/couplingProperties", std::filesystem::exists(g) ? g : "", floatingSurfaceAllowed);
 }
 
 } // namespace iceDEM

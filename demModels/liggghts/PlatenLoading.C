@@ -196,6 +196,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
 
     if (!resumed_)
     {
+        st.startTime = lmp.time();
         writeFrame(lmp, bonds);
     }
     firstStep_ = st.steps;
@@ -210,7 +211,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
         ++st.sample;
         sample(lmp, bonds, hooks, chunk);
 
-        const double travel = speed * lmp.time();
+        const double travel = speed * (lmp.time() - st.startTime);
         // Half load counts once the force stays below it; a dip that recovers
         // (noise, a crack that arrests) does not.
         if (st.previousForce >= 0.5 * st.peak)
@@ -263,7 +264,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
 void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, long chunk)
 {
     LoadingState& st = state_;
-    const double travel = control_.speed * lmp.time();
+    const double travel = control_.speed * (lmp.time() - st.startTime);
     const double force = hooks.force();
     st.platenWork += 0.5 * (force + st.previousForce) * control_.speed * chunk * st.dt;
     st.previousForce = force;

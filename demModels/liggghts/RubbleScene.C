@@ -1,5 +1,7 @@
 #include "RubbleScene.H"
 
+#include "Percentile.H"
+
 #include "AtomicFile.H"
 #include "BondBuilder.H"
 #include "BondModel.H"
@@ -37,24 +39,6 @@ constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 constexpr int wallType = 3;
 
-
-//- A 3 x 3 per-type-pair matrix for `property/global ... peratomtypepair 3`:
-//  `ice` between particles, `wall` wherever the wall type is involved.
-std::string typePairMatrix(double ice, double wall)
-{
-    std::ostringstream m;
-    m << std::setprecision(17);
-    for (int a = 1; a <= 3; ++a)
-        for (int b = 1; b <= 3; ++b)
-            m << (a == wallType || b == wallType ? wall : ice) << (a == 3 && b == 3 ? "" : " ");
-    return m.str();
-}
-
-double percentile(std::vector<double> v, double q)
-{
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<std::size_t>(q*(v.size() - 1) + 0.5))];
-}
 
 } // namespace
 
@@ -184,15 +168,7 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     }
     // Raining only has to produce the settled geometry: softer contacts and
     // bonds (a longer time step), unbreakable blocks and more damping.
-    settlingIce_ = ice_;
-    settlingIce_.material.youngsModulus = settings_.settlingYoungsModulus;
-    for (BondFamilyParameters& f : settlingIce_.families)
-    {
-        f.youngsModulus = settings_.settlingYoungsModulus;
-        f.unbreakable = true;
-    }
-    settlingIce_.damping.model = DampingModel::hysteretic;
-    settlingIce_.damping.alpha = settings_.settlingDampingAlpha;
+    settlingIce_ = ice_.softenedForAssembly(settings_.settlingYoungsModulus, settings_.settlingDampingAlpha);
     if (settings_.settlingFriction >= 0.0)
     {
         settlingIce_.material.frictionCoefficient = settings_.settlingFriction;

@@ -94,4 +94,15 @@ double bondGhostCutoff(const IceProperties& ice, double maxRadius, double skin)
     return 1.1*maxDistFactor*2.0*maxRadius + skin;
 }
 
+std::string typePairMatrix(double ice, double wall)
+{
+    constexpr int wallType = 3;
+    std::ostringstream m;
+    m << std::setprecision(17);
+    for (int a = 1; a <= 3; ++a)
+        for (int b = 1; b <= 3; ++b)
+            m << (a == wallType || b == wallType ? wall : ice) << (a == 3 && b == 3 ? "" : " ");
+    return m.str();
+}
+
 } // namespace iceDEM

@@ -232,3 +232,25 @@ TEST_F(StlWriter, BadGeometryThrows)
     EXPECT_THROW(writeCylinderStl(file, Vec3::Zero(), Vec3::UnitZ(), 1.0, 1.0, 8, "two words"), std::invalid_argument);
     EXPECT_EQ(nEntries(), 0u);
 }
+
+
+TEST_F(StlWriter, BoxIsClosedWithOutwardNormalsAndItsVolume)
+{
+    const Vec3 lo(1.4, -0.1, 0.9), hi(1.65, 1.04, 1.2);
+    writeBoxStl(path("box.stl"), lo, hi, "platen");
+    const StlSolid solid = readAsciiStl(path("box.stl"));
+    ASSERT_EQ(solid.facets.size(), 12u);
+    // Divergence theorem: sum over facets of (centroid . n) area / 3 is the volume;
+    // it comes out negative if any normal points inwards.
+    double volume = 0.0;
+    const Vec3 centre = 0.5 * (lo + hi);
+    for (const Facet& f : solid.facets)
+    {
+        const Vec3 n = (f.v[1] - f.v[0]).cross(f.v[2] - f.v[0]);
+        EXPECT_NEAR(n.normalized().dot(f.normal), 1.0, 1e-9);
+        EXPECT_GT(((f.v[0] + f.v[1] + f.v[2]) / 3.0 - centre).dot(n), 0.0);
+        volume += f.v[0].dot(n) / 6.0;
+    }
+    EXPECT_NEAR(volume, (hi - lo).prod(), 1e-9);
+    EXPECT_THROW(writeBoxStl(path("bad.stl"), hi, lo, "platen"), std::invalid_argument);
+}

@@ -155,6 +155,13 @@ TEST_F(WaterPropertiesFiles, BadInputIsRefusedNamingFileEntryAndAllowed)
     e = errorOf(edited("surfaceLevel          0.45;", "surfaceLevel high;"));
     EXPECT_CONTAINS(e, "hydrostatic.surfaceLevel");
 
+    // `floating` only where the scene asked for it (the ridge sets the level itself).
+    e = errorOf(edited("surfaceLevel          0.45;", "surfaceLevel floating;"));
+    EXPECT_CONTAINS(e, "hydrostatic.surfaceLevel");
+    EXPECT_CONTAINS(e, "ridgeDEM");
+    write("couplingProperties", edited("surfaceLevel          0.45;", "surfaceLevel floating;"));
+    EXPECT_TRUE(WaterProperties::readCase(dir_.string(), true).hydrostatic.floatingSurface);
+
     e = errorOf(header + "waterLevel hydrostatic;\n");
     EXPECT_CONTAINS(e, "'hydrostatic'");
     EXPECT_CONTAINS(e, "missing");

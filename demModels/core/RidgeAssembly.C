@@ -1,0 +1,126 @@
+#include "RidgeAssembly.H"
+
+#include "HydrostaticWater.H"
+#include "Percentile.H"
+#include "RandomPacking.H"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace iceDEM
+{
+
+RidgeLayout assembleRidge
+(
+    const std::vector<SavedParticle>& keel,
+    const ConsolidatedLayerSpec& cl,
+    double trimDepth
+)
+{
+    if (keel.empty())
+    {
+        throw std::invalid_argument("assembleRidge: the keel has no particles");
+    }
+    if (cl.thickness < 0.0 || trimDepth < 0.0)
+    {
+        throw std::invalid_argument("assembleRidge: CL thickness and trim depth must not be negative");
+    }
+    RidgeLayout layout;
+    std::vector<double> tops, bottoms;
+    int maxBlock = -1;
+    for (const SavedParticle& p : keel)
+    {
+        tops.push_back(p.position.z() + p.radius);
+        bottoms.push_back(p.position.z() - p.radius);
+        maxBlock = std::max(maxBlock, p.block);
+    }
+    layout.keelTop = percentile(tops, 0.99);
+    layout.keelBottom = percentile(bottoms, 0.01);
+
+    const bool withLayer = cl.thickness > 0.0;
+    const double trimAbove = withLayer ? layout.keelTop - trimDepth : HUGE_VAL;
+    double highestKept = -HUGE_VAL;
+    for (std::size_t k = 0; k < keel.size(); ++k)
+    {
+        const SavedParticle& p = keel[k];
+        if (p.position.z() > trimAbove)
+        {
+            ++layout.trimmedParticles;
+            continue;
+        }
+        ParticleSpec s;
+        s.position = p.position;
+        s.radius = p.radius;
+        s.block = p.block;
+        s.fixed = p.type != 1;
+        layout.particles.push_back(s);
+        layout.keelTagOfParticle.push_back(static_cast<long>(k) + 1);
+        highestKept = std::max(highestKept, p.position.z() + p.radius);
+    }
+    layout.keelParticles = static_cast<int>(layout.particles.size());
+    if (!withLayer)
+    {
+        layout.clBottom = layout.clTop = highestKept;
+        return layout;
+    }
+
+    layout.clBlock = maxBlock + 1;
+    layout.clBottom = highestKept;
+    layout.clTop = highestKept + cl.thickness;
+    RandomPackingSpec spec;
+    spec.lo = Vec3(0.0, 0.0, layout.clBottom);
+    spec.hi = Vec3(cl.length, cl.width, layout.clTop);
+    spec.particleCount =
+        particleCountForDiameter(spec.lo, spec.hi, cl.particleDiameter, cl.radiusSpread, cl.solidFraction);
+    spec.radiusSpread = cl.radiusSpread;
+    spec.targetSolidFraction = cl.solidFraction;
+    spec.seed = cl.seed;
+    for (ParticleSpec p : buildRandomPacking(spec))
+    {
+        p.block = layout.clBlock;
+        p.fixed = false;
+        layout.particles.push_back(p);
+        layout.keelTagOfParticle.push_back(-1);
+    }
+    return layout;
+}
+
+
+RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int layerBlock, double length, double width)
+{
+    std::vector<double> keelLows, keelHighs, layerLows, layerHighs;
+    for (const SavedParticle& p : particles)
+    {
+        const bool inLayer = layerBlock >= 0 && p.block == layerBlock;
+        (inLayer ? layerLows : keelLows).push_back(p.position.z() - p.radius);
+        (inLayer ? layerHighs : keelHighs).push_back(p.position.z() + p.radius);
+    }
+    if (keelLows.empty())
+    {
+        throw std::invalid_argument("measureRidge: no keel particles");
+    }
+    RidgeGeometry g;
+    g.length = length;
+    g.width = width;
+    g.keelParticles = static_cast<int>(keelLows.size());
+    g.layerParticles = static_cast<int>(layerLows.size());
+    g.keelBottom = percentile(keelLows, 0.01);
+    g.keelTop = percentile(keelHighs, 0.99);
+    g.clBottom = g.hasLayer() ? percentile(layerLows, 0.01) : g.keelTop;
+    g.clTop = g.hasLayer() ? percentile(layerHighs, 0.99) : g.keelTop;
+    return g;
+}
+
+
+double floatingWaterLevel(const std::vector<ParticleSpec>& particles, double densityRatio)
+{
+    double bottom = HUGE_VAL;
+    for (const ParticleSpec& p : particles)
+    {
+        bottom = std::min(bottom, p.position.z() - p.radius);
+    }
+    return bottom + levelDraft(particles, densityRatio);
+}
+
+} // namespace iceDEM

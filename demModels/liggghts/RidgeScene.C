@@ -1,0 +1,732 @@
+#include "RidgeScene.H"
+
+#include "AtomicFile.H"
+#include "BondBuilder.H"
+#include "Dictionary.H"
+#include "FreezeBonding.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "JsonObject.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+#include "SceneSetup.H"
+#include "StlWriter.H"
+#include "TimeStep.H"
+#include "WaterForces.H"
+
+#include "atom.h"
+#include "fix.h"
+#include "lammps.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+constexpr int mobileType = 1;
+constexpr int fixedType = 2;
+constexpr int boxTypes = 3;     // 3: the box walls
+
+std::string number(double v)
+{
+    std::ostringstream s;
+    s << std::setprecision(6) << v;
+    return s.str();
+}
+
+RidgeTest ridgeTestFromName(const Dictionary& d, const std::string& key)
+{
+    const std::string name = d.getChoice(key, {"flexure", "pullUp", "directShear"});
+    return name == "flexure" ? RidgeTest::flexure
+        : name == "pullUp" ? RidgeTest::pullUp
+        : RidgeTest::directShear;
+}
+
+} // namespace
+
+
+std::string toString(RidgeTest t)
+{
+    switch (t)
+    {
+        case RidgeTest::flexure: return "flexure";
+        case RidgeTest::pullUp: return "pullUp";
+        case RidgeTest::directShear: return "directShear";
+    }
+    return "?";
+}
+
+
+RidgeSettings RidgeSettings::read(int argc, char** argv)
+{
+    RidgeSettings s;
+    const std::string usage = "allowed: -case DIR -stage assemble|load|all -resume";
+    for (int k = 1; k < argc; ++k)
+    {
+        const std::string arg = argv[k];
+        if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
+        else if (arg == "-stage" && k + 1 < argc)
+        {
+            s.stage = argv[++k];
+            if (s.stage != "assemble" && s.stage != "load" && s.stage != "all")
+            {
+                throw InputError("command line", "-stage", "'" + s.stage + "' is not one of: assemble load all");
+            }
+        }
+        else if (arg == "-resume") s.resume = true;
+        else throw InputError("command line", arg, "unknown option or missing value; " + usage);
+    }
+
+    const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/ridgeProperties");
+    d.checkKeys({"keel", "consolidatedLayer", "assembly", "ends", "test"});
+
+    const Dictionary& keel = d.subDict("keel");
+    keel.checkKeys({"settledRubble", "trimDepth"});
+    const std::string keelFile = keel.getString("settledRubble");
+    s.keelFile = keelFile.front() == '/' ? keelFile : s.caseDir + "/" + keelFile;
+    s.trimDepth = keel.getScalarOrDefault("trimDepth", s.trimDepth);
+    if (s.trimDepth < 0.0) keel.fail("trimDepth", "must not be negative");
+
+    const Dictionary& cl = d.subDict("consolidatedLayer");
+    cl.checkKeys({"thickness", "particleDiameter", "radiusSpread", "solidFraction", "seed"});
+    s.layer.thickness = cl.getScalar("thickness");
+    if (s.layer.thickness < 0.0) cl.fail("thickness", "must be 0 (a bare keel) or positive, in m");
+    s.layer.particleDiameter = cl.getPositiveScalarOrDefault("particleDiameter", s.layer.particleDiameter);
+    s.layer.radiusSpread = cl.getScalarOrDefault("radiusSpread", 0.0);
+    if (s.layer.radiusSpread < 0.0 || s.layer.radiusSpread >= 0.9)
+    {
+        cl.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
+    }
+    s.layer.solidFraction = cl.getScalarOrDefault("solidFraction", 0.6);
+    if (s.layer.solidFraction <= 0.0 || s.layer.solidFraction >= 0.74)
+    {
+        cl.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+    }
+    s.layer.seed = static_cast<unsigned>(cl.getLabelOrDefault("seed", 1));
+    if (s.layer.thickness > 0.0 && s.layer.thickness < 1.5 * s.layer.particleDiameter)
+    {
+        cl.fail("thickness", "a layer thinner than 1.5 particle diameters cannot bend; "
+                "use smaller particles or 0 for no layer");
+    }
+
+    const Dictionary& a = d.subDict("assembly");
+    a.checkKeys({"pressDepth", "pressSpeed", "relaxTime", "youngsModulus", "dampingAlpha"});
+    s.pressDepth = a.getScalarOrDefault("pressDepth", s.pressDepth);
+    if (s.pressDepth < 0.0) a.fail("pressDepth", "must not be negative");
+    s.pressSpeed = a.getPositiveScalarOrDefault("pressSpeed", s.pressSpeed);
+    s.relaxTime = a.getScalarOrDefault("relaxTime", s.relaxTime);
+    if (s.relaxTime < 0.0) a.fail("relaxTime", "must not be negative");
+    s.assemblyYoungsModulus = a.getPositiveScalarOrDefault("youngsModulus", s.assemblyYoungsModulus);
+    s.assemblyDampingAlpha = a.getScalarOrDefault("dampingAlpha", s.assemblyDampingAlpha);
+    if (s.assemblyDampingAlpha < 0.0 || s.assemblyDampingAlpha > 1.0)
+    {
+        a.fail("dampingAlpha", "expected a hysteretic alpha in [0, 1]");
+    }
+
+    const Dictionary& ends = d.subDict("ends");
+    ends.checkKeys({"fixedLength"});
+    s.fixedEndLength = ends.getScalar("fixedLength");
+    if (s.fixedEndLength < 0.0 || 2.0 * s.fixedEndLength >= s.layer.length)
+    {
+        ends.fail("fixedLength", "expected 0 <= fixedLength < half the beam length");
+    }
+
+    const Dictionary& t = d.subDict("test");
+    t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap"});
+    s.test = ridgeTestFromName(t, "type");
+    s.platenLength = t.getPositiveScalarOrDefault("platenLength", s.platenLength);
+    s.platenHeight = t.getPositiveScalarOrDefault("platenHeight", s.platenHeight);
+    s.settleTime = t.getScalarOrDefault("settleTime", s.settleTime);
+    if (s.settleTime < 0.0) t.fail("settleTime", "must not be negative");
+    s.loading.speed = t.getPositiveScalarOrDefault("speed", s.loading.speed);
+    s.loading.initialGap = t.getScalarOrDefault("initialGap", 0.002);
+    if (s.loading.initialGap < 0.0) t.fail("initialGap", "must not be negative");
+    if (s.test != RidgeTest::flexure && s.layer.thickness <= 0.0)
+    {
+        t.fail("type", toString(s.test) + " tests the bond between keel and consolidated layer: "
+               "consolidatedLayer.thickness must be positive");
+    }
+
+    const Dictionary control = Dictionary::readFile(s.caseDir + "/system/controlDict");
+    control.checkKeys
+    ({
+        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "sampleInterval", "writeInterval", "checkpointInterval"
+    });
+    s.loading.readControl(control);
+    return s;
+}
+
+
+RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings)
+:
+    comm_(comm),
+    settings_(settings)
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+    ice_ = IceProperties::read(path("constant/iceProperties"));
+    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
+    {
+        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
+            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
+    }
+    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    if (strengthModel_.areaCorrectionKind() != FreezeBondStrengthModel::AreaCorrectionKind::given)
+    {
+        throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
+            "a ridge needs `given` (c_f of its keel, see the keel's summary.json); the block shapes "
+            "that heatBalance needs are not kept with the settled keel");
+    }
+    water_ = WaterProperties::readCase(settings_.caseDir, true);
+    if (water_.level != WaterLevel::hydrostatic)
+    {
+        throw InputError(path("constant/couplingProperties"), "waterLevel",
+            "ridgeDEM runs in still water: allowed here: hydrostatic (cfd: see coupling/README.md)");
+    }
+}
+
+
+RidgeScene::~RidgeScene() = default;
+
+
+std::string RidgeScene::path(const std::string& relative) const
+{
+    return settings_.caseDir + "/" + relative;
+}
+
+
+void RidgeScene::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+void RidgeScene::run()
+{
+    log("ridgeDEM: " + toString(settings_.test) + " test of a ridge, case " + settings_.caseDir + ", "
+        + std::to_string(ranks_) + " rank(s)");
+    if (settings_.stage == "assemble" || settings_.stage == "all")
+    {
+        if (settings_.resume && std::filesystem::exists(path("DEM/ridge.h5")))
+        {
+            log("Resuming: the ridge is already assembled (DEM/ridge.h5)");
+        }
+        else
+        {
+            assemble();
+        }
+    }
+    if (settings_.stage == "load" || settings_.stage == "all")
+    {
+        load();
+    }
+}
+
+
+void RidgeScene::chooseContactsAndStep(const std::vector<ParticleSpec>& particles, const IceProperties& ice)
+{
+    double minRadius = HUGE_VAL, meanDiameter = 0.0;
+    for (const ParticleSpec& p : particles)
+    {
+        minRadius = std::min(minRadius, p.radius);
+        meanDiameter += 2.0 * p.radius / particles.size();
+    }
+    const double minMass = ice.material.density * 4.0 / 3.0 * M_PI * std::pow(minRadius, 3);
+    contact_ = ContactParameters::of(ice, meanDiameter, minMass);
+    const TimeStepLimits limits = timeStepLimits(ice, minRadius, ice.maxBondsPerParticle);
+    dt_ = chooseTimeStep(ice, limits, path("constant/iceProperties"));
+    particleCount_ = static_cast<long>(particles.size());
+}
+
+
+void RidgeScene::startLiggghts
+(
+    const std::vector<ParticleSpec>& particles,
+    const std::vector<int>& types,
+    const IceProperties& ice,
+    const std::string& readParticles
+)
+{
+    double maxRadius = 0.0, top = 0.0;
+    for (const ParticleSpec& p : particles)
+    {
+        maxRadius = std::max(maxRadius, p.radius);
+        top = std::max(top, p.position.z() + p.radius);
+    }
+
+    if (rank_ == 0)
+    {
+        std::filesystem::create_directories(path("DEM"));
+        std::filesystem::create_directories(path("postProcessing"));
+        const double margin = 0.05;
+        writeLiggghtsData
+        (
+            path("DEM/ridge.data"), "ridge written by ridgeDEM", particles, ice.material.density,
+            Vec3(-margin, -margin, -margin),
+            Vec3(settings_.layer.length + margin, settings_.layer.width + margin, top + settings_.loading.maxTravel + 0.5),
+            boxTypes, [&](const ParticleSpec& p) { return types[&p - particles.data()]; }
+        );
+    }
+    MPI_Barrier(comm_);
+
+    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
+    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    const double skin = 0.2 * maxRadius;
+    ScriptVariables variables
+    {
+        {"readParticles", "\"" + readParticles + "\""},
+        {"ghostCutoff", exactNumber(bondGhostCutoff(ice, maxRadius, skin))},
+        {"neighbourSkin", exactNumber(skin)},
+        {"dt", exactNumber(dt_)},
+        {"gravity", exactNumber(water_.gravity.norm())},
+        {"boxWidth", exactNumber(settings_.layer.width)},
+        {"knMatrix", "\"" + typePairMatrix(contact_.normalStiffness, contact_.normalStiffness) + "\""},
+        {"ktMatrix", "\"" + typePairMatrix(contact_.tangentialStiffness, contact_.tangentialStiffness) + "\""},
+        {"gnMatrix", "\"" + typePairMatrix(contact_.normalDamping, contact_.normalDamping) + "\""},
+        {"gtMatrix", "\"" + typePairMatrix(contact_.tangentialDamping, contact_.tangentialDamping) + "\""},
+        {"muMatrix", "\"" + typePairMatrix(contact_.friction, 0.0) + "\""},
+        {"muRMatrix", "\"" + typePairMatrix(contact_.rollingFriction, 0.0) + "\""},
+        {"layerFirstTag", std::to_string(layerFirstTag_)}
+    };
+    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "ridgeDEM");
+    const std::string script = path("DEM/in.ridge");
+    if (!std::filesystem::exists(script))
+    {
+        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
+    }
+    lmp_->runScript(script);
+}
+
+
+void RidgeScene::assemble()
+{
+    const auto wallStart = std::chrono::steady_clock::now();
+    if (!std::filesystem::exists(settings_.keelFile))
+    {
+        throw InputError(path("constant/ridgeProperties"), "keel.settledRubble",
+            "'" + settings_.keelFile + "' does not exist: build the keel first (its rubble case's "
+            "./Allrun, or rubbleDEM -stage settle)");
+    }
+    const SavedRubble keel = SavedRubble::read(settings_.keelFile);
+    const RidgeLayout layout = assembleRidge(keel.particles, settings_.layer, settings_.trimDepth);
+    layerFirstTag_ = layout.keelParticles + 1;
+    const int layerCount = static_cast<int>(layout.particles.size()) - layout.keelParticles;
+
+    // The water stands where the finished ridge floats.
+    std::vector<ParticleSpec> pressed = layout.particles;
+    for (std::size_t k = layout.keelParticles; k < pressed.size(); ++k)
+    {
+        pressed[k].position.z() -= settings_.pressDepth;
+    }
+    HydrostaticWaterParameters waterParameters = water_.hydrostatic;
+    if (waterParameters.floatingSurface)
+    {
+        waterParameters.surfaceLevel =
+            floatingWaterLevel(pressed, ice_.material.density / waterParameters.density);
+    }
+    {
+        std::ostringstream msg;
+        msg << "Keel " << settings_.keelFile << ": " << keel.particles.size() << " particles, top "
+            << layout.keelTop << " m, bottom " << layout.keelBottom << " m, saved water level "
+            << keel.waterLevel << " m; " << layout.trimmedParticles << " particles trimmed from the top "
+            << settings_.trimDepth << " m; consolidated layer " << settings_.layer.thickness << " m of "
+            << layerCount << " particles from z = " << layout.clBottom << " m; water surface at "
+            << waterParameters.surfaceLevel << " m (" << (waterParameters.floatingSurface ? "where the ridge floats" : "given") << ")";
+        log(msg.str());
+    }
+
+    // Pressing: the keel with soft contacts and unbreakable blocks (as it
+    // settled), the layer rigid (fixed type, moved by LIGGGHTS).
+    const IceProperties soft = ice_.softenedForAssembly(settings_.assemblyYoungsModulus, settings_.assemblyDampingAlpha);
+    std::vector<int> types(layout.particles.size(), mobileType);
+    for (std::size_t k = layout.keelParticles; k < types.size(); ++k) types[k] = fixedType;
+    chooseContactsAndStep(layout.particles, soft);
+    startLiggghts(layout.particles, types, soft, "read_data " + path("DEM/ridge.data"));
+    const ContactParameters softContact = contact_;
+
+    waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
+    waterForces_->defineForceFix();
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft, softContact.normalStiffness);
+    lmp_->command("fix iceBondForces all external pf/callback 1 1");
+    bonds_->attach("iceBondForces");
+    waterForces_->defineAddedMassFix();
+    lmp_->command("run 0");
+    std::vector<ParticleSpec> keelOnly(layout.particles.begin(), layout.particles.begin() + layout.keelParticles);
+    std::vector<BondPair> blockBonds;
+    for (const BondPair& b : BondBuilder(soft).build(keelOnly))
+    {
+        if (b.family == BondFamily::ice) blockBonds.push_back(b);
+    }
+    bonds_->createBonds(layout.particles, blockBonds);
+    lmp_->command("run 0");
+
+    const long pressSteps = layerCount > 0
+        ? std::lround(settings_.pressDepth / (settings_.pressSpeed * dt_)) : 0;
+    const long relaxSteps = layerCount > 0 ? std::lround(settings_.relaxTime / dt_) : 0;
+    if (pressSteps > 0)
+    {
+        log("Pressing the layer " + number(settings_.pressDepth * 1e3) + " mm into the keel at "
+            + number(settings_.pressSpeed) + " m/s (" + std::to_string(pressSteps) + " steps of " + number(dt_) + " s)");
+        lmp_->command("fix pressLayer layer move linear 0 0 " + exactNumber(-settings_.pressSpeed));
+        lmp_->command("run " + std::to_string(pressSteps));
+        lmp_->command("unfix pressLayer");
+    }
+    if (relaxSteps > 0)
+    {
+        log("Keel settling under the held layer for " + number(settings_.relaxTime) + " s ("
+            + std::to_string(relaxSteps) + " steps)");
+        lmp_->command("velocity layer set 0 0 0");
+        lmp_->command("run " + std::to_string(relaxSteps));
+    }
+
+    // Bonds at the pressed geometry: ice bonds within blocks and within the
+    // layer, freeze-bonds wherever two blocks (or layer and keel) touch, with
+    // the confinement of the contact forces they settled with.
+    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    std::vector<ParticleSpec> now = layout.particles;
+    for (std::size_t k = 0; k < now.size(); ++k) now[k].position = positions[k];
+    std::vector<BondPair> iceBonds;
+    for (const BondPair& b : BondBuilder(ice_).build(now))
+    {
+        if (b.family == BondFamily::ice) iceBonds.push_back(b);
+    }
+    const std::vector<NewFreezeBond> freezeBonds =
+        freezeBondsAtContacts(now, ice_, strengthModel_, softContact.normalStiffness);
+    const FreezeBondingStatistics freezeStats = freezeBondingStatistics(freezeBonds, now);
+    long layerToKeel = 0;
+    for (const NewFreezeBond& b : freezeBonds)
+    {
+        if ((b.pair.i >= layout.keelParticles) != (b.pair.j >= layout.keelParticles)) ++layerToKeel;
+    }
+
+    SavedRubble ridge;
+    ridge.bonds = newBondStates(iceBonds, now, ice_);
+    const std::vector<BondState> freezeStates = freezeBondStates(freezeBonds, now, ice_);
+    ridge.bonds.insert(ridge.bonds.end(), freezeStates.begin(), freezeStates.end());
+    long fixedEnds = 0;
+    for (std::size_t k = 0; k < now.size(); ++k)
+    {
+        SavedParticle p;
+        p.position = now[k].position;
+        p.radius = now[k].radius;
+        p.density = ice_.material.density;
+        p.block = now[k].block;
+        const double x = p.position.x();
+        const bool atEnd = x - p.radius < settings_.fixedEndLength
+            || x + p.radius > settings_.layer.length - settings_.fixedEndLength;
+        p.type = atEnd ? fixedType : mobileType;
+        fixedEnds += atEnd;
+        ridge.particles.push_back(p);
+    }
+    ridge.time = 0.0;
+    ridge.waterLevel = waterParameters.surfaceLevel;
+    ridge.description = "ridge assembled by ridgeDEM from " + settings_.keelFile + ": keel trimmed by "
+        + number(settings_.trimDepth) + " m, consolidated layer " + number(settings_.layer.thickness)
+        + " m (block " + std::to_string(layout.clBlock) + "), pressed " + number(settings_.pressDepth) + " m";
+
+    RidgeGeometry geometry = measureRidge(ridge.particles, layout.clBlock, settings_.layer.length, settings_.layer.width);
+    geometry.waterLevel = ridge.waterLevel;
+    if (rank_ == 0)
+    {
+        ridge.write(path("DEM/ridge.h5"));
+        writeGeometry(geometry);
+    }
+    std::ostringstream msg;
+    msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
+        << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
+        << freezeStats.meanTensile * 1e-3 << " kPa, shear " << freezeStats.meanShear * 1e-3
+        << " kPa on the bond area (" << strengthModel_.summary() << "); " << fixedEnds
+        << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
+        << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count())
+        << "; saved DEM/ridge.h5";
+    log(msg.str());
+
+    bonds_.reset();
+    waterForces_.reset();
+    lmp_.reset();
+}
+
+
+void RidgeScene::writeGeometry(const RidgeGeometry& g) const
+{
+    JsonObject layers;
+    JsonObject keel;
+    keel.add("zBottom", g.keelBottom).add("zTop", g.keelTop).add("particles", g.keelParticles);
+    JsonObject layer;
+    layer.add("zBottom", g.clBottom).add("zTop", g.clTop).add("particles", g.layerParticles);
+    JsonObject j;
+    j.add("length", g.length).add("width", g.width)
+     .add("keel", keel)
+     .add("consolidatedLayer", layer)
+     .add("depth", g.depth())
+     .add("loadX", 0.5 * g.length)
+     .add("platenLength", settings_.platenLength)
+     .add("supports", std::vector<double>{settings_.fixedEndLength, g.length - settings_.fixedEndLength})
+     .add("waterLevel", g.waterLevel)
+     .add("test", toString(settings_.test));
+    writeFileAtomically(path("postProcessing/ridgeGeometry.json"), j.text() + "\n");
+}
+
+
+double RidgeScene::testForce() const
+{
+    if (settings_.test == RidgeTest::flexure)
+    {
+        // Force of the ice on the platen, which they push up.
+        return lmp_->fix("platen").compute_vector(2);
+    }
+    // What the actuator holding the layer must apply: minus the net force of
+    // bonds, contacts, gravity and water on the layer's particles.
+    const int axis = settings_.test == RidgeTest::pullUp ? 2 : 0;
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double local = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (atom.tag[i] >= layerFirstTag_) local -= atom.f[i][axis];
+    }
+    return sumOverRanks(comm_, local);
+}
+
+
+std::vector<double> RidgeScene::waterColumns()
+{
+    const WaterForceTotals totals = waterForces_->totals();
+    if (submergedAtStart_ < 0.0)
+    {
+        submergedAtStart_ = totals.submergedVolume;
+    }
+    const HydrostaticWater& water = waterForces_->water();
+    const double share = water.buoyancy(totals.submergedVolume - submergedAtStart_);
+    double platenBuoyancy = 0.0;
+    if (settings_.test == RidgeTest::flexure)
+    {
+        const double bottom = platenBottom_ - settings_.loading.speed * (lmp_->time() - loading_->state().startTime);
+        platenBuoyancy = water.buoyancy(water.submergedPrismVolume(
+            settings_.platenLength * (settings_.layer.width + 0.1), bottom, bottom + settings_.platenHeight));
+    }
+    return {totals.buoyancy.z(), totals.submergedVolume, share, platenBuoyancy};
+}
+
+
+void RidgeScene::load()
+{
+    const auto wallStart = std::chrono::steady_clock::now();
+    if (!std::filesystem::exists(path("DEM/ridge.h5")))
+    {
+        throw InputError(path("DEM/ridge.h5"), "(file)", "missing: run the assemble stage first (-stage assemble)");
+    }
+    const SavedRubble ridge = SavedRubble::read(path("DEM/ridge.h5"));
+    int maxBlock = -1;
+    for (const SavedParticle& p : ridge.particles) maxBlock = std::max(maxBlock, p.block);
+    const int layerBlock = settings_.layer.thickness > 0.0 ? maxBlock : -1;
+    RidgeGeometry geometry = measureRidge(ridge.particles, layerBlock, settings_.layer.length, settings_.layer.width);
+    geometry.waterLevel = ridge.waterLevel;
+    layerFirstTag_ = geometry.keelParticles + 1;
+
+    std::vector<ParticleSpec> particles(ridge.particles.size());
+    std::vector<int> types(ridge.particles.size());
+    double topUnderPlaten = -HUGE_VAL;
+    const double xLoad = 0.5 * settings_.layer.length;
+    for (std::size_t k = 0; k < particles.size(); ++k)
+    {
+        const SavedParticle& s = ridge.particles[k];
+        particles[k].position = s.position;
+        particles[k].radius = s.radius;
+        particles[k].block = s.block;
+        // Keel-bond tests hold the keel and move the layer (fix move): neither is integrated.
+        types[k] = settings_.test == RidgeTest::flexure ? s.type : fixedType;
+        if (std::abs(s.position.x() - xLoad) < 0.5 * settings_.platenLength + s.radius)
+        {
+            topUnderPlaten = std::max(topUnderPlaten, s.position.z() + s.radius);
+        }
+    }
+    chooseContactsAndStep(particles, ice_);
+    loading_ = std::make_unique<PlatenLoading>
+    (
+        comm_, settings_.caseDir, "ridgeDEM", settings_.loading, dt_, particleCount_, fixedType,
+        std::vector<std::string>{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"}
+    );
+    std::unique_ptr<Checkpoint> checkpoint;
+    if (settings_.resume && loading_->checkpointExists())
+    {
+        checkpoint = std::make_unique<Checkpoint>(loading_->readCheckpoint());
+    }
+    startLiggghts
+    (
+        particles, types, ice_,
+        checkpoint ? "read_restart " + loading_->restartFile() : "read_data " + path("DEM/ridge.data")
+    );
+
+    // The test's own fixes come before the water and the bonds (the bonds'
+    // hysteretic damping acts on the total force).
+    platenBottom_ = topUnderPlaten + settings_.loading.initialGap;
+    if (settings_.test == RidgeTest::flexure)
+    {
+        if (rank_ == 0)
+        {
+            writeBoxStl
+            (
+                path("DEM/platen.stl"),
+                Vec3(xLoad - 0.5 * settings_.platenLength, -0.05, platenBottom_),
+                Vec3(xLoad + 0.5 * settings_.platenLength, settings_.layer.width + 0.05, platenBottom_ + settings_.platenHeight),
+                "platen"
+            );
+        }
+        MPI_Barrier(comm_);
+        lmp_->command("fix platen all mesh/surface/stress file " + path("DEM/platen.stl") + " type 1");
+        lmp_->command("fix platenWall all wall/gran model hooke/stiffness tangential history rolling_friction epsd2 "
+                      "mesh n_meshes 1 meshes platen absolute_damping on");
+    }
+    HydrostaticWaterParameters waterParameters = water_.hydrostatic;
+    waterParameters.surfaceLevel = ridge.waterLevel;
+    waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
+    waterForces_->defineForceFix();
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
+    lmp_->command("fix iceBondForces all external pf/callback 1 1");
+    bonds_->attach("iceBondForces");
+    waterForces_->defineAddedMassFix();
+    lmp_->command("run 0");     // property/atom is reset by the first run's set-up
+    if (checkpoint)
+    {
+        loading_->resumeFrom(*checkpoint, *lmp_, *bonds_);
+    }
+    else
+    {
+        bonds_->restoreBonds(ridge.bonds);
+    }
+    lmp_->command("run 0");
+
+    const long settleSteps = settings_.test == RidgeTest::flexure ? std::lround(settings_.settleTime / dt_) : 0;
+    if (!checkpoint && settleSteps > 0)
+    {
+        // The bonds were made at the pressed geometry with no load in them:
+        // the ridge first finds its equilibrium under gravity and buoyancy.
+        lmp_->command("run " + std::to_string(settleSteps) + " pre no post no");
+        // Bonds that break meanwhile stay in the breakage record, before the loading's start time.
+        log("Settled under gravity and buoyancy for " + number(settings_.settleTime) + " s: kinetic energy "
+            + number(totalKineticEnergy(*lmp_)) + " J");
+    }
+    const double v = settings_.loading.speed;
+    if (settings_.test == RidgeTest::flexure)
+    {
+        lmp_->command("fix movePlaten all move/mesh mesh platen linear 0 0 " + exactNumber(-v));
+    }
+    else
+    {
+        lmp_->command("fix moveLayer layer move linear " + exactNumber(settings_.test == RidgeTest::directShear ? v : 0.0)
+                      + " 0 " + exactNumber(settings_.test == RidgeTest::pullUp ? v : 0.0));
+    }
+
+    std::ostringstream msg;
+    msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
+        << geometry.layerParticles << " layer), " << ridge.bonds.size() << " bonds, depth "
+        << geometry.depth() << " m, water surface " << ridge.waterLevel << " m, time step " << dt_ << " s";
+    log(msg.str());
+
+    PlatenLoading::Hooks hooks;
+    hooks.force = [this] { return testForce(); };
+    hooks.extras = [this] { return waterColumns(); };
+    loading_->run(*lmp_, *bonds_, hooks);
+
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    writeSummary(geometry, wall);
+    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+        + std::to_string(loading_->breakage().size()) + " bonds broken");
+}
+
+
+void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
+{
+    if (rank_ != 0)
+    {
+        return;
+    }
+    const CsvWriter& curve = loading_->curve();
+    const BreakageRecord& breaks = loading_->breakage();
+    const std::size_t rows = curve.nRows();
+    double peak = -HUGE_VAL, travelAtPeak = 0.0, shareAtPeak = 0.0;
+    const double startForce = rows > 0 ? curve.row(0)[PlatenLoading::forceColumn] : 0.0;
+    const int shareColumn = 8;
+    for (std::size_t k = 0; k < rows; ++k)
+    {
+        const std::vector<double>& row = curve.row(k);
+        if (row[PlatenLoading::forceColumn] > peak)
+        {
+            peak = row[PlatenLoading::forceColumn];
+            travelAtPeak = row[PlatenLoading::travelColumn];
+            shareAtPeak = row[shareColumn];
+        }
+    }
+    // Freeze-bonds broken in tension, and those between layer and keel.
+    std::size_t freezeBroken = 0, freezeTension = 0, interfaceBroken = 0;
+    for (const BreakEvent& e : breaks.events())
+    {
+        if (e.family != BondFamily::freeze) continue;
+        ++freezeBroken;
+        freezeTension += e.mode == BreakMode::tension;
+        interfaceBroken += (e.tagA >= layerFirstTag_) != (e.tagB >= layerFirstTag_);
+    }
+
+    const double L = g.length, B = g.width, D = g.depth(), sigmaF1 = 902e3;
+    JsonObject byMode;
+    byMode.add("tension", long(breaks.count(BreakMode::tension))).add("shear", long(breaks.count(BreakMode::shear)))
+          .add("twist", long(breaks.count(BreakMode::twist))).add("bending", long(breaks.count(BreakMode::bending)));
+    JsonObject byFamily;
+    byFamily.add("ice", long(breaks.count(BondFamily::ice))).add("freeze", long(freezeBroken));
+
+    JsonObject j;
+    j.add("case", "ridge").add("test", toString(settings_.test))
+     .add("consolidated_layer_m", settings_.layer.thickness)
+     .add("keel_thickness_m", g.keelTop - g.keelBottom)
+     .add("depth_m", D)
+     .add("water_level_m", g.waterLevel)
+     .add("freeze_bond_set", strengthModel_.summary())
+     .add("peak_force_N", peak)
+     .add("travel_at_peak_m", travelAtPeak)
+     .add("force_at_start_N", startForce)
+     .add("buoyancy_share_at_peak_N", shareAtPeak)
+     .add("peak_force_without_buoyancy_N", peak - shareAtPeak);
+    if (settings_.test == RidgeTest::flexure)
+    {
+        j.add("flexural_strength_Pa", 3.0 * peak * L / (2.0 * B * D * D))
+         .add("equivalent_thickness_m", std::sqrt(3.0 * peak * L / (2.0 * sigmaF1 * B)))
+         .add("sigma_f1_Pa", sigmaF1);
+    }
+    else
+    {
+        j.add("interface_area_m2", L * B)
+         .add("interface_strength_Pa", (peak - startForce) / (L * B));
+    }
+    j.add("broken_bonds", long(breaks.size()))
+     .add("broken_by_mode", byMode)
+     .add("broken_by_family", byFamily)
+     .add("freeze_bonds_broken_in_tension_share", freezeBroken > 0 ? double(freezeTension) / freezeBroken : 0.0)
+     .add("layer_keel_bonds_broken", long(interfaceBroken))
+     .add("particles", particleCount_)
+     .add("keel_particles", g.keelParticles)
+     .add("layer_particles", g.layerParticles)
+     .add("platen_speed_m_per_s", settings_.loading.speed)
+     .add("steps", loading_->state().steps)
+     .add("dt", dt_)
+     .add("ranks", ranks_)
+     .add("wall_s", wallSeconds)
+     .add("loop_wall_s", loading_->loopSeconds())
+     .add("particle_steps_per_s", loading_->loopSeconds() > 0.0
+          ? loading_->loopSteps() * double(particleCount_) / loading_->loopSeconds() : 0.0);
+    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+}
+
+} // namespace iceDEM
