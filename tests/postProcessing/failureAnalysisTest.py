@@ -62,6 +62,18 @@ class ClassifierTest(Folder):
         self.assertEqual(result["mode"], "undetermined")
         self.assertLess(result["evidence"]["cl_share_mid_span"], 0.6)
 
+    def test_a_keel_crack_that_does_not_grow_upward_is_no_v_crack(self):
+        result = self.classify("keel bottom band growing downward")
+        self.assertEqual(result["evidence"]["first_share_keel_bottom_mid_span"], 1.0)
+        self.assertLess(result["evidence"]["keel_late_median_height_m"],
+                        result["evidence"]["keel_first_median_height_m"])
+        self.assertEqual(result["mode"], "undetermined")
+
+    def test_one_shear_band_is_no_plug(self):
+        result = self.classify("one shear band")
+        self.assertEqual(result["evidence"]["plug_bands"]["side_shares"], [1.0, 0.0])
+        self.assertEqual(result["mode"], "undetermined")
+
     def test_evidence_says_where_and_in_what_order(self):
         result = self.classify("keel V-crack from the bottom")
         ev = result["evidence"]
@@ -92,7 +104,7 @@ def known_events():
     return {"time": [0.1, 0.2, 0.3, 0.5, 0.6, 1.2, 1.5, 1.8],
             "x": [1.5, 1.55, 1.6, 0.3, 1.5, 2.9, 1.52, 0.1],
             "y": [0.5] * 8,
-            "z": [0.6, 0.55, 0.62, 0.2, 0.51, 0.3, 0.58, 0.1],
+            "z": [0.6, 0.52, 0.62, 0.2, 0.51, 0.3, 0.58, 0.1],
             "family": [0, 0, 0, 1, 1, 1, 0, 0],
             "mode": [1, 1, 1, 2, 1, 2, 4, 3]}
 
@@ -110,7 +122,8 @@ class CountsTest(Folder):
         self.assertEqual(counts["family_mode"]["freeze"],
                          {"tension": 1, "shear": 2, "twist": 0, "bending": 0})
         # keel: z 0.2, 0.3, 0.1; CL: the rest; centre |x - 1.525| <= 0.25: five;
-        # interface: the freeze-bond at z 0.51 (CL bottom 0.5, tolerance 0.05).
+        # interface: the freeze-bond at z 0.51 (CL bottom 0.5, tolerance 0.05), not the ice
+        # bond at z 0.52.
         self.assertEqual(counts["region"], {"keel": 3, "consolidatedLayer": 5, "centre": 5,
                                             "ends": 3, "interface": 1})
         self.assertAlmostEqual(summary["freeze_bonds_broken_in_tension_fraction"], 1 / 3)
@@ -122,6 +135,7 @@ class CountsTest(Folder):
         rows = np.genfromtxt(os.path.join(out, "counts.csv"), delimiter=",", names=True)
         self.assertEqual(len(rows), 201)  # every sample of the 0-2 s curve
         at = {round(t, 2): r for t, r in zip(rows["time"], rows)}
+        self.assertEqual(at[0.5]["broken"], 4)  # the break at 0.5 s counts at 0.5 s
         self.assertEqual(at[0.55]["broken"], 4)
         self.assertEqual(at[0.55]["tension"], 3)
         self.assertEqual(at[0.55]["freeze_shear"], 1)

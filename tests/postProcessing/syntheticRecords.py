@@ -98,7 +98,8 @@ def scattered_keel(rng, n, start):
 
 
 def scenario(name, seed=1):
-    """A break pattern of one ridge failure mode (or a CL failure scattered along the span)."""
+    """A break pattern of one ridge failure mode, or one that resembles a mode but breaks one
+    of its rules."""
     rng = np.random.default_rng(seed)
     if name == "CL flexure":
         parts = [cl_crack(rng), scattered_keel(rng, 20, 1.5)]
@@ -115,6 +116,18 @@ def scenario(name, seed=1):
         parts = [dict(time=1.0 + rng.uniform(0.0, 1.0, n), x=edge + rng.normal(0.0, 0.015, n),
                       z=z, family=np.where(z < 0.5, FREEZE, ICE),
                       mode=rng.choice([SHEAR, TENSION], n, p=[0.7, 0.3]))]
+    elif name == "keel bottom band growing downward":
+        n = 150
+        progress = np.arange(n) / n
+        parts = [dict(time=1.0 + progress, x=MID + rng.uniform(-0.2, 0.2, n),
+                      z=0.16 * (1.0 - progress), family=np.full(n, FREEZE),
+                      mode=np.full(n, TENSION))]
+    elif name == "one shear band":
+        n = 200
+        z = rng.uniform(0.02, 0.63, n)
+        parts = [dict(time=1.0 + rng.uniform(0.0, 1.0, n),
+                      x=MID - RIDGE["loadHalfLength"] + rng.normal(0.0, 0.015, n), z=z,
+                      family=np.where(z < 0.5, FREEZE, ICE), mode=np.full(n, SHEAR))]
     elif name == "scattered CL":
         crack = cl_crack(rng)
         crack["x"] = rng.uniform(0.0, 3.05, len(crack["x"]))
