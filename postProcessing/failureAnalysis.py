@@ -534,7 +534,9 @@ def plot_moment(path, record, selected, geometry, title):
         _set_limits(ax, record, geometry, coord)
         ax.set_xlabel("x [m]")
         ax.set_ylabel(label)
-        ax.set_title("%s view (%s)" % (view, "x-z" if view == "side" else "x-y"))
+        ax.set_title("%s view (%s)%s" % (view, "x-z" if view == "side" else "x-y",
+                                         "; grey: platen, dashed: load line, triangles: "
+                                         "supports" if geometry else ""))
         if ax.get_legend_handles_labels()[0]:
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, markerscale=1.5)
     fig.suptitle(title)
