@@ -63,7 +63,7 @@ def read_curve(path):
             rows = [r for r in csv.reader(line for line in handle
                                           if line.strip() and not line.lstrip().startswith("#"))]
     except OSError as error:
-        raise InputError(path, "-", "cannot read the force curve (%s)" % error)
+        raise InputError(path, "(file)", "cannot read the force curve (%s)" % error)
     if not rows:
         raise InputError(path, "header", "empty file; needs columns time, travel, force")
     header = [name.strip() for name in rows[0]]
@@ -106,9 +106,9 @@ def read_geometry(path):
         with open(path) as handle:
             geometry = json.load(handle)
     except (OSError, ValueError) as error:
-        raise InputError(path, "-", "cannot read the geometry JSON (%s)" % error)
+        raise InputError(path, "(file)", "cannot read the geometry JSON (%s)" % error)
     if not isinstance(geometry, dict):
-        raise InputError(path, "-", "must be a JSON object")
+        raise InputError(path, "(file)", "must be a JSON object")
     checked = {key: _number(path, geometry, key, default)
                for key, default in (("length", None), ("width", None), ("x0", 0.0),
                                     ("y0", 0.0), ("loadHalfLength", 0.0))}

@@ -158,9 +158,12 @@ def find_moments(time, travel, force, extra_times=(), half_fraction=0.5):
         else:
             not_found["halfLoadAfterPeak"] = "the force does not fall to half the peak"
     for t in extra_times:
-        moments.append({"name": "t%g" % t, "time": float(t),
-                        "travel": float(np.interp(t, time, travel)),
-                        "force": float(np.interp(t, time, force))})
+        moment = {"name": "t%g" % t, "time": float(t),
+                  "travel": float(np.interp(t, time, travel)),
+                  "force": float(np.interp(t, time, force))}
+        if not time[0] <= t <= time[-1]:
+            moment["note"] = "outside the force curve: travel and force of its nearest end"
+        moments.append(moment)
     return moments, not_found
 
 
@@ -672,9 +675,11 @@ def main(argv=None):
           % (counts["total"], ", ".join("%s %d" % kv for kv in counts["mode"].items()),
              ", ".join("%s %d" % kv for kv in counts["family"].items())))
     for m in summary["moments"]:
-        print("  %-18s t = %.4g s, travel %.1f mm, force %.1f kN: %d broken"
+        print("  %-18s t = %.4g s, travel %.1f mm, force %.1f kN: %d broken%s"
               % (m["name"], m["time"], m["travel"] * 1e3, m["force"] * 1e-3,
-                 m["counts"]["total"]))
+                 m["counts"]["total"], " (%s)" % m["note"] if "note" in m else ""))
+    for name, why in summary["moments_not_found"].items():
+        print("  %-18s not found: %s" % (name, why))
     if "ridge_failure" in summary:
         print("  ridge failure mode: %s" % summary["ridge_failure"]["mode"])
         for line in summary["ridge_failure"]["text"]:

@@ -168,9 +168,13 @@ class MomentsTest(Folder):
 
     def test_half_load_not_reached_is_reported(self):
         time = np.linspace(0.0, 1.0, 11)
-        moments, missing = fa.find_moments(time, time, 100.0 * time)
-        self.assertEqual([m["name"] for m in moments], ["halfLoadBeforePeak", "peak"])
+        moments, missing = fa.find_moments(time, time, 100.0 * time, extra_times=[0.5, 3.0])
+        self.assertEqual([m["name"] for m in moments],
+                         ["halfLoadBeforePeak", "peak", "t0.5", "t3"])
         self.assertIn("halfLoadAfterPeak", missing)
+        self.assertNotIn("note", moments[2])
+        self.assertIn("outside the force curve", moments[3]["note"])
+        self.assertEqual(moments[3]["force"], 100.0)
 
 
 class OutputsTest(Folder):
