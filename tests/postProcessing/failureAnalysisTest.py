@@ -3,6 +3,7 @@
 
     failureAnalysisTest.py CLASS   (ClassifierTest, CountsTest, MomentsTest, OutputsTest,
                                     BadInputTest), as ctest runs them."""
+import importlib.util
 import json
 import os
 import subprocess
@@ -213,6 +214,29 @@ class OutputsTest(Folder):
             self.assertGreater(os.path.getsize(png), 20000)
         self.assertGreater(os.path.getsize(os.path.join(out, "counts.png")), 50000)
         self.assertFalse([f for f in os.listdir(out) if "tmp" in f])  # atomic writes finished
+
+    @unittest.skipUnless(importlib.util.find_spec("vtk"), "python3-vtk9 not installed")
+    def test_vtk_reads_the_moments_as_paraview_does(self):
+        import vtk
+
+        record = syn.scenario("plug shear")
+        case = syn.make_case(os.path.join(self.dir, "case"), record, syn.RIDGE)
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(run_tool(case, "--out", out).returncode, 0)
+        peak = [m for m in load_json(os.path.join(out, "summary.json"))["moments"]
+                if m["name"] == "halfLoadAfterPeak"][0]
+        reader = vtk.vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(out, peak["vtp"]))
+        reader.Update()
+        self.assertEqual(reader.GetErrorCode(), 0)
+        data = reader.GetOutput()
+        selected = record["time"] <= peak["time"]
+        self.assertEqual(data.GetNumberOfPoints(), int(selected.sum()))
+        self.assertEqual(data.GetNumberOfVerts(), int(selected.sum()))
+        modes = data.GetPointData().GetArray("mode")
+        self.assertEqual([int(modes.GetValue(k)) for k in range(modes.GetNumberOfTuples())],
+                         record["mode"][selected].tolist())
+        self.assertAlmostEqual(data.GetPoint(3)[2], record["z"][selected][3], places=8)
 
     def test_order_of_events_is_in_time(self):
         case = syn.make_case(os.path.join(self.dir, "case"), known_events(), syn.RIDGE)
