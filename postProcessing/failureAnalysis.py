@@ -26,7 +26,9 @@ Writes to DIR (default CASE_DIR/postProcessing/failureAnalysis), each file atomi
 counts.csv (cumulative counts at every curve sample, by mode, family, family and mode,
 region), counts.png, at each moment (half load before the peak, peak, half load after the
 peak, the -at times) moment_<name>.vtp (broken-bond centres with point data) and
-moment_<name>.png (side and plan views), moments.pvd, summary.json. With a geometry that has
+moment_<name>.png (side and plan views), moments.pvd, summary.json (with the share of each
+family broken where CASE_DIR/postProcessing/summary.json gives ice_bonds, freeze_bonds). With
+a geometry that has
 a layer "consolidatedLayer" and/or "keel" the ridge failure mode is classified
 (classifyRidgeFailure, rules in its docstring) and printed.
 Exit status 1 with a message naming the file and entry on bad input."""
@@ -567,6 +569,30 @@ def order_of_events(record, masks, moments, curve):
     return sorted(events, key=lambda e: e["time_s"])
 
 
+def bond_population(case):
+    """{family: bonds in the case} from CASE/postProcessing/summary.json's ice_bonds and
+    freeze_bonds, where the scene wrote them."""
+    path = os.path.join(case, "postProcessing", "summary.json")
+    try:
+        with open(path) as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        return {}
+    found = {family: summary.get(family + "_bonds") for family in FAMILIES.values()}
+    return {family: n for family, n in found.items()
+            if isinstance(n, int) and not isinstance(n, bool) and n > 0}
+
+
+def broken_shares(counts, population):
+    """Share of each family's bonds broken, and of the freeze-bonds broken in tension."""
+    shares = {"broken_share_of_%s_bonds" % family: counts["family"][family] / n
+              for family, n in population.items()}
+    if "freeze" in population:
+        shares["freeze_bonds_broken_in_tension_share_of_all_freeze_bonds"] = \
+            counts["family_mode"]["freeze"]["tension"] / population["freeze"]
+    return shares
+
+
 def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_half_width,
             interface_tolerance, rules=None):
     record = read_breakage(breakage)
@@ -579,11 +605,13 @@ def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_
 
     write_atomically(os.path.join(out, "counts.csv"), counts_csv_text(record, masks, *curve))
     plot_counts(os.path.join(out, "counts.png"), record, curve, moments)
+    population = bond_population(case)
     pvd = []
     for m in moments:
         selected = record["time"] <= m["time"]
         m["counts"] = count_bonds(record, masks, selected)
         m["freeze_bonds_broken_in_tension_fraction"] = freeze_tension_fraction(m["counts"])
+        m.update(broken_shares(m["counts"], population))
         m["vtp"] = "moment_%s.vtp" % m["name"]
         m["png"] = "moment_%s.png" % m["name"]
         write_atomically(os.path.join(out, m["vtp"]), vtp_text(record, regions, selected))
@@ -609,6 +637,8 @@ def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_
                              "interface": {"0": "no", "1": "CL-keel interface freeze-bond"}},
         "broken_bonds": totals["total"], "counts": totals,
         "freeze_bonds_broken_in_tension_fraction": freeze_tension_fraction(totals),
+        "bonds_in_case": population,
+        **broken_shares(totals, population),
         "moments": moments, "moments_not_found": not_found,
         "order_of_events": order_of_events(record, masks, moments, curve),
     }

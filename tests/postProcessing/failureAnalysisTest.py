@@ -128,6 +128,22 @@ class CountsTest(Folder):
         self.assertEqual(counts["region"], {"keel": 3, "consolidatedLayer": 5, "centre": 5,
                                             "ends": 3, "interface": 1})
         self.assertAlmostEqual(summary["freeze_bonds_broken_in_tension_fraction"], 1 / 3)
+        self.assertEqual(summary["bonds_in_case"], {})  # the case has no summary.json
+
+    def test_shares_of_the_bonds_the_case_had(self):
+        case = syn.make_case(os.path.join(self.dir, "case"), known_events())
+        with open(os.path.join(case, "postProcessing", "summary.json"), "w") as f:
+            json.dump({"ice_bonds": 50, "freeze_bonds": 12}, f)
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(run_tool(case, "--out", out, "-at", "0.55").returncode, 0)
+        summary = load_json(os.path.join(out, "summary.json"))
+        self.assertEqual(summary["broken_share_of_ice_bonds"], 5 / 50)
+        self.assertEqual(summary["broken_share_of_freeze_bonds"], 3 / 12)
+        self.assertEqual(summary["freeze_bonds_broken_in_tension_share_of_all_freeze_bonds"],
+                         1 / 12)
+        at = [m for m in summary["moments"] if m["name"] == "t0.55"][0]
+        self.assertEqual(at["broken_share_of_ice_bonds"], 3 / 50)
+        self.assertEqual(at["broken_share_of_freeze_bonds"], 1 / 12)
 
     def test_cumulative_counts_at_curve_samples(self):
         case = syn.make_case(os.path.join(self.dir, "case"), known_events())
