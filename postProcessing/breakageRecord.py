@@ -55,9 +55,10 @@ def read_breakage(path):
     return {name: values[order] for name, values in record.items()}
 
 
-def read_curve(path):
+def read_curve(path, columns=None):
     """(time [s], travel [m], force [N]) of a platen force CSV with columns time, force and
-    travel (or displacement); '#' lines are comments; rows with non-finite numbers dropped."""
+    travel (or displacement), or the three columns named in `columns`; '#' lines are
+    comments; rows with non-finite numbers are dropped."""
     try:
         with open(path, newline="") as handle:
             rows = [r for r in csv.reader(line for line in handle
@@ -67,19 +68,19 @@ def read_curve(path):
     if not rows:
         raise InputError(path, "header", "empty file; needs columns time, travel, force")
     header = [name.strip() for name in rows[0]]
-    travel_column = "travel" if "travel" in header else "displacement"
-    for column in ("time", travel_column, "force"):
+    names = columns or ("time", "travel" if "travel" in header else "displacement", "force")
+    for column in names:
         if column not in header:
-            raise InputError(path, column, "column missing (columns: %s; needed: time, force "
-                             "and travel or displacement)" % ", ".join(header))
-    columns = [header.index(c) for c in ("time", travel_column, "force")]
+            raise InputError(path, column, "column missing (columns: %s; needed: %s)"
+                             % (", ".join(header), ", ".join(names) if columns else
+                                "time, force and travel or displacement"))
+    columns = [header.index(c) for c in names]
     data = []
     for number, row in enumerate(rows[1:], start=2):
         try:
             values = [float(row[c]) for c in columns]
         except (ValueError, IndexError):
-            raise InputError(path, "line %d" % number, "time, %s and force must be numbers"
-                             % travel_column)
+            raise InputError(path, "line %d" % number, "%s must be numbers" % ", ".join(names))
         if all(math.isfinite(v) for v in values):
             data.append(values)
     if len(data) < 2:

@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Where, when and how bonds broke: failure analysis of a case's breakage record.
 
-    failureAnalysis.py CASE_DIR [-at t1,t2] [--breakage H5] [--curve CSV] [--geometry JSON]
+    failureAnalysis.py CASE_DIR [-at t1,t2] [--breakage H5] [--curve CSV] [--columns T,D,F]
+                       [--geometry JSON]
                        [--out DIR] [--centre-half-width 0.25] [--interface-tolerance 0.05]
 
 Inputs (defaults relative to CASE_DIR): postProcessing/breakage.h5 (group /breakage as
 demModels/core/BreakageRecord.C writes it), postProcessing/platenForce.csv (columns time,
-travel or displacement, force) and, if present, postProcessing/geometry.json:
+travel or displacement, force; others named by --columns) and, if present,
+postProcessing/geometry.json:
 
     {"length": 3.05, "width": 0.94,          # body extent along x and y [m]
      "x0": 0.0, "y0": 0.0,                   # its lower corner (default 0)
@@ -594,9 +596,9 @@ def broken_shares(counts, population):
 
 
 def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_half_width,
-            interface_tolerance, rules=None):
+            interface_tolerance, rules=None, curve_columns=None):
     record = read_breakage(breakage)
-    curve = read_curve(curve_path)
+    curve = read_curve(curve_path, curve_columns)
     geometry = read_geometry(geometry_path) if geometry_path else None
     regions = assign_regions(record, geometry, centre_half_width, interface_tolerance)
     masks = region_masks(regions)
@@ -672,6 +674,8 @@ def main(argv=None):
     parser.add_argument("-at", "--at", default="", help="further moments: times t1,t2 [s]")
     parser.add_argument("--breakage", help="default CASE/postProcessing/breakage.h5")
     parser.add_argument("--curve", help="default CASE/postProcessing/platenForce.csv")
+    parser.add_argument("--columns", metavar="TIME,TRAVEL,FORCE",
+                        help="the curve's column names if not time, travel, force")
     parser.add_argument("--geometry", help="default CASE/postProcessing/geometry.json if present")
     parser.add_argument("--out", help="default CASE/postProcessing/failureAnalysis")
     parser.add_argument("--centre-half-width", type=float, default=0.25,
@@ -690,6 +694,10 @@ def main(argv=None):
                             ("--interface-tolerance", args.interface_tolerance)):
             if not (math.isfinite(value) and value > 0):
                 raise InputError("command line", name, "must be a positive length [m]")
+        columns = args.columns.split(",") if args.columns else None
+        if columns is not None and (len(columns) != 3 or not all(columns)):
+            raise InputError("command line", "--columns", "needs three column names "
+                             "TIME,TRAVEL,FORCE, got '%s'" % args.columns)
         geometry = args.geometry
         if geometry is None and os.path.exists(in_case(None, "geometry.json")):
             geometry = in_case(None, "geometry.json")
@@ -697,7 +705,7 @@ def main(argv=None):
                           in_case(args.breakage, "breakage.h5"),
                           in_case(args.curve, "platenForce.csv"), geometry,
                           parse_times(args.at) if args.at else [], args.centre_half_width,
-                          args.interface_tolerance)
+                          args.interface_tolerance, curve_columns=columns)
     except InputError as error:
         sys.exit("failureAnalysis.py: %s" % error)
     counts = summary["counts"]

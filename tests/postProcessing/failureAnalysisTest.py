@@ -290,6 +290,10 @@ class BadInputTest(Folder):
             f.write("time,travel\n0,0\n1,1\n")
         self.check_refused([case, "--curve", curve, "--out", out], "noForce.csv",
                            "entry 'force'", "column missing")
+        self.check_refused([case, "--curve", curve, "--columns", "time,travel,load_N", "--out",
+                            out], "noForce.csv", "entry 'load_N'", "needed: time, travel, load_N")
+        self.check_refused([case, "--columns", "time,force", "--out", out], "'--columns'",
+                           "three column names")
         self.check_refused([case, "--curve", os.path.join(case, "gone.csv"), "--out", out],
                            "gone.csv", "cannot read")
 
