@@ -265,7 +265,8 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
 
     interface = np.zeros(len(t), bool)
     if cl:
-        interface = (record["family"] == 1) & (np.abs(z - cl["zBottom"]) <= rules.interfaceTolerance)
+        interface = ((record["family"] == 1)
+                     & (np.abs(z - cl["zBottom"]) <= rules.interfaceTolerance))
 
     def inside(layer):
         if layer is None:
@@ -325,7 +326,8 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
               and ev["keel_late_median_height_m"] > ev["keel_first_median_height_m"])
     if plug and plug["holds"]:
         mode = "plug shear"
-    elif ev["share_cl"] >= rules.substantialFraction and ev["share_keel"] >= rules.substantialFraction:
+    elif (ev["share_cl"] >= rules.substantialFraction
+          and ev["share_keel"] >= rules.substantialFraction):
         mode = "mixed"
     elif (ev["share_cl"] >= rules.dominantFraction
           and ev["share_keel"] < rules.substantialFraction
