@@ -112,9 +112,14 @@ def read_geometry(path):
         raise InputError(path, "(file)", "must be a JSON object")
     checked = {key: _number(path, geometry, key, default)
                for key, default in (("length", None), ("width", None), ("x0", 0.0),
-                                    ("y0", 0.0), ("loadHalfLength", 0.0))}
-    if checked["length"] <= 0 or checked["width"] <= 0:
-        raise InputError(path, "length/width", "must be positive")
+                                    ("y0", 0.0), ("loadHalfLength", 0.0),
+                                    ("particleRadius", 0.0))}
+    for key in ("length", "width"):
+        if checked[key] <= 0:
+            raise InputError(path, key, "must be positive")
+    for key in ("loadHalfLength", "particleRadius"):
+        if checked[key] < 0:
+            raise InputError(path, key, "must not be negative")
     checked["loadX"] = _number(path, geometry, "loadX",
                                checked["x0"] + 0.5 * checked["length"])
     if "waterLevel" in geometry:

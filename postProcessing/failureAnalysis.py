@@ -17,7 +17,8 @@ postProcessing/geometry.json:
      "loadX": 1.525,                         # mid-span load position (default the middle)
      "loadHalfLength": 0.125,                # half the platen length along x (default 0)
      "supports": [0.0, 3.05],                # x of the supports or fixed ends (optional)
-     "waterLevel": 0.55}                     # optional, drawn in the side view
+     "waterLevel": 0.55,                     # optional, drawn in the side view
+     "particleRadius": 0.0275}               # optional (default 0), see classifyRidgeFailure
 
 Regions of a broken bond (its centre): the layer whose z range holds it ("outside" if none);
 the span band, "centre" where |x - loadX| <= centre half-width, else "ends"; and "interface",
@@ -195,8 +196,11 @@ def _share(mask, within):
     return float((mask & within).sum()) / n if n else 0.0
 
 
-def _z_cover(z, bottom, top):
-    return float((z.max() - z.min()) / (top - bottom)) if len(z) else 0.0
+def _z_cover(z, bottom, top, inset=0.0):
+    """Share of [bottom, top] spanned by z; bond centres lie about a particle radius (inset)
+    inside a layer's faces, so the faces are moved in by it, up to a quarter of the depth."""
+    inset = min(inset, 0.25 * (top - bottom))
+    return float((z.max() - z.min()) / (top - bottom - 2 * inset)) if len(z) else 0.0
 
 
 def _plug_shear(record, geometry, rules, window, depth):
@@ -219,7 +223,7 @@ def _plug_shear(record, geometry, rules, window, depth):
             "side_shares": [float(in_left.sum()) / n_band if n_band else 0.0,
                             float(in_right.sum()) / n_band if n_band else 0.0],
             "shear_share": _share(record["mode"] == 2, band),
-            "depth_cover": _z_cover(record["z"][band], *depth),
+            "depth_cover": _z_cover(record["z"][band], *depth, geometry["particleRadius"]),
         }
         found["holds"] = (found["share"] >= rules.dominantFraction
                           and min(found["side_shares"]) >= rules.plugSideFraction
@@ -243,7 +247,9 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
     1. "plug shear": a pair of vertical bands |x - edge| <= plugBandHalfWidth at the platen
        edges (loadX -+ loadHalfLength) or at the supports holds >= dominantFraction of the
        breaks, each band >= plugSideFraction of them, shear is >= shearDominance of their
-       modes, and they span >= throughThicknessFraction of the body's depth.
+       modes, and they span >= throughThicknessFraction of the body's depth. (Depths and
+       thicknesses here are taken less the geometry's particleRadius at each face, where
+       bond centres cannot lie, at most a quarter of the depth each.)
     2. "mixed": CL and keel each hold >= substantialFraction of the breaks.
     3. "CL flexure": the CL holds >= dominantFraction and the keel < substantialFraction;
        >= concentrationFraction of the CL breaks lie at mid-span (|x - loadX| <=
@@ -300,7 +306,8 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
         "first_share_keel_bottom_mid_span": _share(keel_bottom & mid, early),
         "first_share_mid_span": _share(mid, early),
         "cl_share_mid_span": _share(mid, window & in_cl),
-        "cl_thickness_cover_mid_span": _z_cover(z[window & in_cl & mid], cl["zBottom"], cl["zTop"])
+        "cl_thickness_cover_mid_span": _z_cover(z[window & in_cl & mid], cl["zBottom"],
+                                                cl["zTop"], geometry["particleRadius"])
         if cl else 0.0,
         "first_break_s": {name: float(t[window & mask].min()) if (window & mask).any() else None
                           for name, mask in (("consolidatedLayer", in_cl), ("keel", in_keel),

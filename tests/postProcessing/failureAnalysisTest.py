@@ -75,6 +75,27 @@ class ClassifierTest(Folder):
         self.assertEqual(result["evidence"]["plug_bands"]["side_shares"], [1.0, 0.0])
         self.assertEqual(result["mode"], "undetermined")
 
+    def test_coarse_particles_in_a_thin_cl(self):
+        # A 0.10 m CL of 27.5 mm spheres: bond centres only between 27.5 and 72.5 mm up.
+        record = syn.scenario("CL flexure")
+        in_cl = record["z"] > 0.5
+        record["z"][in_cl] = 0.5275 + (record["z"][in_cl] - 0.51) / 0.13 * 0.045
+        thin = dict(syn.RIDGE, layers=[syn.RIDGE["layers"][0],
+                                       {"name": "consolidatedLayer", "zBottom": 0.5,
+                                        "zTop": 0.6}])
+        path = os.path.join(self.dir, "thin.json")
+        for radius, mode in ((0.0, "undetermined"), (0.0275, "CL flexure")):
+            with open(path, "w") as f:
+                json.dump(dict(thin, particleRadius=radius), f)
+            result = fa.classifyRidgeFailure(record, read_geometry(path))
+            with self.subTest(particleRadius=radius):
+                self.assertEqual(result["mode"], mode)
+                # each face moved in by the radius, at most a quarter of the thickness
+                expected = (record["z"][in_cl].max() - record["z"][in_cl].min()) \
+                    / (0.1 - 2 * min(radius, 0.025))
+                self.assertAlmostEqual(result["evidence"]["cl_thickness_cover_mid_span"],
+                                       expected, places=12)
+
     def test_evidence_says_where_and_in_what_order(self):
         result = self.classify("keel V-crack from the bottom")
         ev = result["evidence"]
