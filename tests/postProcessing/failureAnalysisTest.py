@@ -58,6 +58,16 @@ class ClassifierTest(Folder):
                 with self.subTest(mode=name, seed=seed):
                     self.assertEqual(self.classify(name, seed)["mode"], name)
 
+    def test_rubble_punch_has_a_keel_only(self):
+        path = os.path.join(self.dir, "keel.json")
+        with open(path, "w") as f:
+            json.dump(dict(syn.RIDGE, layers=syn.RIDGE["layers"][:1]), f)
+        for name in ("keel V-crack from the bottom", "plug shear"):
+            with self.subTest(mode=name):
+                result = fa.classifyRidgeFailure(syn.scenario(name), read_geometry(path))
+                self.assertEqual(result["mode"], name)
+                self.assertEqual(result["evidence"]["share_cl"], 0.0)
+
     def test_cl_breaks_scattered_along_the_span_are_not_cl_flexure(self):
         result = self.classify("scattered CL")
         self.assertEqual(result["mode"], "undetermined")
