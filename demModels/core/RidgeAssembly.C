@@ -90,11 +90,13 @@ RidgeLayout assembleRidge
 RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int layerBlock, double length, double width)
 {
     std::vector<double> keelLows, keelHighs, layerLows, layerHighs;
+    double meanRadius = 0.0;
     for (const SavedParticle& p : particles)
     {
         const bool inLayer = layerBlock >= 0 && p.block == layerBlock;
         (inLayer ? layerLows : keelLows).push_back(p.position.z() - p.radius);
         (inLayer ? layerHighs : keelHighs).push_back(p.position.z() + p.radius);
+        meanRadius += p.radius / particles.size();
     }
     if (keelLows.empty())
     {
@@ -104,6 +106,7 @@ RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int laye
     g.length = length;
     g.width = width;
     g.keelParticles = static_cast<int>(keelLows.size());
+    g.particleRadius = meanRadius;
     g.layerParticles = static_cast<int>(layerLows.size());
     g.keelBottom = percentile(keelLows, 0.01);
     g.keelTop = percentile(keelHighs, 0.99);

@@ -462,22 +462,21 @@ void RidgeScene::assemble()
 
 void RidgeScene::writeGeometry(const RidgeGeometry& g) const
 {
-    JsonObject layers;
-    JsonObject keel;
-    keel.add("zBottom", g.keelBottom).add("zTop", g.keelTop).add("particles", g.keelParticles);
-    JsonObject layer;
-    layer.add("zBottom", g.clBottom).add("zTop", g.clTop).add("particles", g.layerParticles);
-    JsonObject j;
-    j.add("length", g.length).add("width", g.width)
-     .add("keel", keel)
-     .add("consolidatedLayer", layer)
-     .add("depth", g.depth())
-     .add("loadX", 0.5 * g.length)
-     .add("platenLength", settings_.platenLength)
-     .add("supports", std::vector<double>{settings_.fixedEndLength, g.length - settings_.fixedEndLength})
-     .add("waterLevel", g.waterLevel)
-     .add("test", toString(settings_.test));
-    writeFileAtomically(path("postProcessing/ridgeGeometry.json"), j.text() + "\n");
+    // The schema of postProcessing/failureAnalysis.py (postProcessing/README.md).
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"length\": " << g.length << ", \"width\": " << g.width
+      << ", \"x0\": 0, \"y0\": 0,\n \"layers\": [{\"name\": \"keel\", \"zBottom\": " << g.keelBottom
+      << ", \"zTop\": " << g.keelTop << "}";
+    if (g.hasLayer())
+    {
+        j << ",\n            {\"name\": \"consolidatedLayer\", \"zBottom\": " << g.clBottom
+          << ", \"zTop\": " << g.clTop << "}";
+    }
+    j << "],\n \"loadX\": " << 0.5 * g.length << ", \"loadHalfLength\": " << 0.5 * settings_.platenLength
+      << ", \"supports\": [" << settings_.fixedEndLength << ", " << g.length - settings_.fixedEndLength
+      << "], \"waterLevel\": " << g.waterLevel << ",\n \"particleRadius\": " << g.particleRadius
+      << ", \"depth\": " << g.depth() << ", \"test\": \"" << toString(settings_.test) << "\"}\n";
+    writeFileAtomically(path("postProcessing/geometry.json"), j.str());
 }
 
 
@@ -534,6 +533,10 @@ void RidgeScene::load()
     const int layerBlock = settings_.layer.thickness > 0.0 ? maxBlock : -1;
     RidgeGeometry geometry = measureRidge(ridge.particles, layerBlock, settings_.layer.length, settings_.layer.width);
     geometry.waterLevel = ridge.waterLevel;
+    if (rank_ == 0)
+    {
+        writeGeometry(geometry);
+    }
     layerFirstTag_ = geometry.keelParticles + 1;
 
     std::vector<ParticleSpec> particles(ridge.particles.size());
