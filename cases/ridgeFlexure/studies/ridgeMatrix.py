@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""The 16-run ridge matrix of ../shared/data/ridgeMatrix.csv (scenes.md section 7).
+
+Each run is a copy of the ridge case (constant/, system/, DEM/) under
+runs/<resolution>/, with its keel, consolidated-layer thickness and
+freeze-bond set set in its dictionaries. Runs go in parallel (one rank each,
+--jobs at a time), a finished run (summary.json written) is skipped, and a
+killed one continues from its checkpoint, so the command can simply be run
+again. Each run is then classified by postProcessing/failureAnalysis.py, and
+the results table (results/ridgeMatrix_<resolution>.csv and .md) and the plot
+(results/ridgeMatrix_<resolution>.png) are written.
+
+Usage: studies/ridgeMatrix.py [--resolution default|quick] [--jobs N] [--runs 1,2,5]
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASE = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(CASE)), "postProcessing"))
+import iceCases  # noqa: E402
+
+SIGMA_F1 = 902e3        # Pa, flexural strength of the thickest CL beam (scenes.md section 7)
+LENGTH, WIDTH = 3.05, 0.94
+
+# The quick resolution: coarser keel blocks and layer, a faster platen and a
+# shorter settling, so that the whole matrix runs in minutes. Its numbers
+# show the trends, not calibrated strengths (see README).
+QUICK = {
+    "keelSuffix": "quick",
+    "consolidatedLayer.particleDiameter": 0.065,
+    "test.speed": 0.2,
+    "test.settleTime": 0.05,
+    "assembly.relaxTime": 0.1,
+    "assembly.pressSpeed": 0.05,
+}
+
+
+def matrix():
+    path = os.path.join(iceCases.SHARED, "data", "ridgeMatrix.csv")
+    with open(path) as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    return [{"run": int(r["run"]), "keel": r["keel_m"], "set": r["bond_set"], "cl_cm": float(r["CL_cm"])}
+            for r in rows]
+
+
+def keel_case(run, resolution):
+    name = "keel" + run["keel"] + (QUICK["keelSuffix"] if resolution == "quick" else "")
+    return os.path.join(CASE, "keels", name)
+
+
+def run_dir(run, resolution):
+    return os.path.join(CASE, "runs", resolution,
+                        "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
+
+
+def prepare(run, resolution):
+    target = run_dir(run, resolution)
+    if os.path.exists(os.path.join(target, "constant", "ridgeProperties")):
+        return target
+    iceCases.copy_case(CASE, target)
+    props = os.path.join(target, "constant", "ridgeProperties")
+    iceCases.set_entry(props, "keel.settledRubble",
+                       '"%s"' % os.path.join(keel_case(run, resolution), "DEM", "settled.h5"))
+    iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
+    iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
+    if resolution == "quick":
+        for entry, value in QUICK.items():
+            if "." in entry:
+                iceCases.set_entry(props, entry, value)
+    return target
+
+
+def execute(run, resolution):
+    """Runs (or resumes) one run and its failure analysis; returns its wall time or None if it was done."""
+    target = prepare(run, resolution)
+    summary = os.path.join(target, "postProcessing", "summary.json")
+    if os.path.exists(summary) and os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
+        return None
+    start = time.time()
+    if not os.path.exists(summary):
+        resume = os.path.exists(os.path.join(target, "DEM", "checkpoint"))
+        iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
+                         log_name="log.ridgeDEM")
+    subprocess.run([sys.executable, os.path.join(iceCases.TOP, "postProcessing", "failureAnalysis.py"), target],
+                   check=True, stdout=open(os.path.join(target, "log.failureAnalysis"), "w"),
+                   stderr=subprocess.STDOUT)
+    return time.time() - start
+
+
+def result_row(run, resolution):
+    target = run_dir(run, resolution)
+    s = iceCases.summary(target)
+    fa = json.load(open(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")))
+    failure = fa.get("ridge_failure", {"mode": "n/a", "text": []})
+    force = s["peak_force_N"]
+    depth = s["depth_m"]
+    evidence = failure.get("text", [])
+    return {
+        "run": run["run"], "keel_m": run["keel"], "bond_set": run["set"], "CL_cm": int(run["cl_cm"]),
+        "depth_m": round(depth, 4),
+        "failure_force_kN": round(force * 1e-3, 3),
+        "buoyancy_share_at_peak_kN": round(s["buoyancy_share_at_peak_N"] * 1e-3, 3),
+        "flexural_strength_kPa": round(3 * force * LENGTH / (2 * WIDTH * depth ** 2) * 1e-3, 2),
+        "equivalent_thickness_m": round(math.sqrt(max(force, 0.0) * 3 * LENGTH / (2 * SIGMA_F1 * WIDTH)), 4),
+        "failure_mode": failure["mode"],
+        "freeze_broken_in_tension_share": round(s["freeze_bonds_broken_in_tension_share"], 3),
+        "broken_ice": s["broken_by_family"]["ice"], "broken_freeze": s["broken_by_family"]["freeze"],
+        "layer_keel_broken": s["layer_keel_bonds_broken"],
+        "particles": s["particles"], "wall_s": round(s["wall_s"], 1),
+        "evidence": " | ".join(evidence if isinstance(evidence, list) else [str(evidence)]),
+    }
+
+
+def write_table(rows, resolution):
+    os.makedirs(os.path.join(CASE, "results"), exist_ok=True)
+    base = os.path.join(CASE, "results", "ridgeMatrix_" + resolution)
+    columns = list(rows[0].keys())
+    lines = [",".join(columns)] + [",".join('"%s"' % r[c] if c == "evidence" else str(r[c]) for c in columns)
+                                   for r in rows]
+    iceCases.write_atomically(base + ".csv", "\n".join(lines) + "\n")
+    short = [c for c in columns if c != "evidence"]
+    md = ["| " + " | ".join(short) + " |", "|" + "---|" * len(short)]
+    md += ["| " + " | ".join(str(r[c]) for c in short) + " |" for r in rows]
+    md += ["", "Evidence of the failure mode (postProcessing/failureAnalysis.py, per run):", ""]
+    md += ["- run %d: %s" % (r["run"], r["evidence"]) for r in rows]
+    iceCases.write_atomically(base + ".md", "\n".join(md) + "\n")
+    return base
+
+
+def plot(rows, base):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["keel_m"], r["bond_set"]), []).append(r)
+    for (keel, bond_set), rs in sorted(groups.items()):
+        rs = sorted(rs, key=lambda r: r["CL_cm"])
+        style = "-o" if keel == "0.5" else "--s"
+        label = "keel %s m, %s" % (keel, bond_set)
+        ax1.plot([r["CL_cm"] for r in rs], [r["flexural_strength_kPa"] for r in rs], style, label=label)
+        ax2.plot([r["CL_cm"] for r in rs], [r["failure_force_kN"] for r in rs], style, label=label)
+    ax1.set_xlabel("consolidated layer thickness [cm]")
+    ax1.set_ylabel("flexural strength 3FL/(2BD$^2$) [kPa]")
+    ax2.set_xlabel("consolidated layer thickness [cm]")
+    ax2.set_ylabel("failure force F [kN]")
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+    ax2.legend(fontsize=8)
+    fig.suptitle("Ridge flexure matrix (%s resolution)" % os.path.basename(base).split("_")[-1])
+    fig.tight_layout()
+    tmp = base + ".tmp.png"
+    fig.savefig(tmp, dpi=120)
+    os.replace(tmp, base + ".png")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--resolution", choices=["default", "quick"], default="default")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--runs", default="", help="comma-separated run numbers (default: all 16)")
+    args = parser.parse_args()
+
+    runs = matrix()
+    if args.runs:
+        wanted = {int(k) for k in args.runs.split(",")}
+        runs = [r for r in runs if r["run"] in wanted]
+    for run in runs:
+        settled = os.path.join(keel_case(run, args.resolution), "DEM", "settled.h5")
+        if not os.path.exists(settled):
+            sys.exit("ridgeMatrix: %s is missing: build the keel first (./Allrun does)" % settled)
+
+    lock = threading.Lock()
+    started = time.time()
+    done, times = [0], []
+
+    def one(run):
+        wall = execute(run, args.resolution)
+        with lock:
+            done[0] += 1
+            if wall is not None:
+                times.append(wall)
+            left = len(runs) - done[0]
+            eta = (sum(times) / len(times) * left / args.jobs) if times else 0.0
+            print("run %2d done (%s); %d of %d finished, %s elapsed, about %s left"
+                  % (run["run"], "%.0f s" % wall if wall is not None else "already done", done[0], len(runs),
+                     time.strftime("%H:%M:%S", time.gmtime(time.time() - started)),
+                     time.strftime("%H:%M:%S", time.gmtime(eta))), flush=True)
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for future in [pool.submit(one, r) for r in runs]:
+            future.result()
+
+    rows = [result_row(r, args.resolution) for r in runs]
+    base = write_table(rows, args.resolution)
+    plot(rows, base)
+    print("Results: %s.csv, %s.md, %s.png (%s in all)"
+          % (base, base, base, time.strftime("%H:%M:%S", time.gmtime(time.time() - started))))
+
+
+if __name__ == "__main__":
+    main()
