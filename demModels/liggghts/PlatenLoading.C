@@ -64,6 +64,11 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("travelAfterHalfLoad", "must not be negative");
     }
+    minTravel = control.getScalarOrDefault("minTravel", 0.0);
+    if (minTravel < 0.0 || minTravel > maxTravel)
+    {
+        control.fail("minTravel", "expected 0 <= minTravel <= maxTravel");
+    }
     sampleInterval = positive("sampleInterval", 2e-4);
     writeInterval = positive("writeInterval", 0.01);
     checkpointInterval = positive("checkpointInterval", 0.02);
@@ -197,6 +202,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     if (!resumed_)
     {
         st.startTime = lmp.time();
+        st.kineticAtStart = totalKineticEnergy(lmp);
         writeFrame(lmp, bonds);
     }
     firstStep_ = st.steps;
@@ -223,7 +229,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
             st.halfLoadTravel = travel;
         }
         const bool done = control_.stopAfterHalfLoad && st.halfLoadTravel > 0.0
-            && travel > st.halfLoadTravel + control_.travelAfterHalfLoad;
+            && travel > st.halfLoadTravel + control_.travelAfterHalfLoad && travel >= control_.minTravel;
 
         if (st.sample % samplesPerFrame == 0)
         {
@@ -316,11 +322,12 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
     MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
-    if (anyFailed == 0 && kinetic > 2.0 * std::abs(state_.platenWork) + 1e-6)
+    if (anyFailed == 0 && kinetic > 2.0 * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
     {
         std::ostringstream msg;
         msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
-            << state_.platenWork << " J) at time " << lmp.time() << " s, step " << lmp.step()
+            << state_.platenWork << " J) and the kinetic energy at the start (" << state_.kineticAtStart
+            << " J) at time " << lmp.time() << " s, step " << lmp.step()
             << ": the run is unstable (lower timeStep.factor)";
         failure = msg.str();
         anyFailed = 1;

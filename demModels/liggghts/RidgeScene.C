@@ -159,7 +159,7 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
     const Dictionary control = Dictionary::readFile(s.caseDir + "/system/controlDict");
     control.checkKeys
     ({
-        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "application", "maxTravel", "minTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
         "sampleInterval", "writeInterval", "checkpointInterval"
     });
     s.loading.readControl(control);
@@ -632,6 +632,7 @@ void RidgeScene::load()
         lmp_->command("fix moveLayer layer move linear " + exactNumber(settings_.test == RidgeTest::directShear ? v : 0.0)
                       + " 0 " + exactNumber(settings_.test == RidgeTest::pullUp ? v : 0.0));
     }
+    lmp_->command("run 0 post no");    // set-up of the new fix (the loading runs with pre no)
 
     std::ostringstream msg;
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
