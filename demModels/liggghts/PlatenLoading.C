@@ -69,6 +69,11 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("minTravel", "expected 0 <= minTravel <= maxTravel");
     }
+    rampTravel = control.getScalarOrDefault("rampTravel", 0.0);
+    if (rampTravel < 0.0 || rampTravel > maxTravel)
+    {
+        control.fail("rampTravel", "expected 0 <= rampTravel <= maxTravel");
+    }
     sampleInterval = positive("sampleInterval", 2e-4);
     writeInterval = positive("writeInterval", 0.01);
     checkpointInterval = positive("checkpointInterval", 0.02);
@@ -76,6 +81,43 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("sampleInterval", "must not exceed writeInterval");
     }
+}
+
+
+double PlatenLoadingControl::travelAt(double elapsed) const
+{
+    if (rampTravel <= 0.0)
+    {
+        return speed * elapsed;
+    }
+    const double tau = rampTravel / speed;
+    return speed * (elapsed - tau * (1.0 - std::exp(-elapsed / tau)));
+}
+
+
+std::string PlatenLoadingControl::speedFormula(long startStep, double dt) const
+{
+    std::ostringstream f;
+    f << std::setprecision(17) << speed;
+    if (rampTravel > 0.0)
+    {
+        f << "*(1-exp(-(step-" << startStep << ")*" << dt / (rampTravel / speed) << "))";
+    }
+    return f.str();
+}
+
+
+std::string PlatenLoadingControl::travelFormula(long startStep, double dt) const
+{
+    std::ostringstream f;
+    f << std::setprecision(17) << speed << "*((step-" << startStep << ")*" << dt;
+    if (rampTravel > 0.0)
+    {
+        const double tau = rampTravel / speed;
+        f << "-" << tau << "*(1-exp(-(step-" << startStep << ")*" << dt / tau << "))";
+    }
+    f << ")";
+    return f.str();
 }
 
 
@@ -192,7 +234,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
         std::max(1L, std::lround(control_.checkpointInterval / control_.sampleInterval));
     const long maxSteps = control_.fixedSteps > 0
         ? control_.fixedSteps
-        : std::lround((control_.maxTravel + control_.initialGap) / (speed * dt));
+        : std::lround((control_.maxTravel + control_.initialGap + control_.rampTravel) / (speed * dt));
 
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
@@ -217,7 +259,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
         ++st.sample;
         sample(lmp, bonds, hooks, chunk);
 
-        const double travel = speed * (lmp.time() - st.startTime);
+        const double travel = control_.travelAt(lmp.time() - st.startTime);
         // Half load counts once the force stays below it; a dip that recovers
         // (noise, a crack that arrests) does not.
         if (st.previousForce >= 0.5 * st.peak)
@@ -270,9 +312,10 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
 void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, long chunk)
 {
     LoadingState& st = state_;
-    const double travel = control_.speed * (lmp.time() - st.startTime);
+    const double travel = control_.travelAt(lmp.time() - st.startTime);
     const double force = hooks.force();
-    st.platenWork += 0.5 * (force + st.previousForce) * control_.speed * chunk * st.dt;
+    st.platenWork += 0.5 * (force + st.previousForce) * (travel - st.previousTravel);
+    st.previousTravel = travel;
     st.previousForce = force;
     const double kinetic = totalKineticEnergy(lmp);
     const double elastic = sumOverRanks(comm_, bonds.localBondEnergy());

@@ -159,7 +159,7 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
     const Dictionary control = Dictionary::readFile(s.caseDir + "/system/controlDict");
     control.checkKeys
     ({
-        "application", "maxTravel", "minTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "application", "maxTravel", "minTravel", "rampTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
         "sampleInterval", "writeInterval", "checkpointInterval"
     });
     s.loading.readControl(control);
@@ -512,7 +512,7 @@ std::vector<double> RidgeScene::waterColumns()
     double platenBuoyancy = 0.0;
     if (settings_.test == RidgeTest::flexure)
     {
-        const double bottom = platenBottom_ - settings_.loading.speed * (lmp_->time() - loading_->state().startTime);
+        const double bottom = platenBottom_ - settings_.loading.travelAt(lmp_->time() - loading_->state().startTime);
         platenBuoyancy = water.buoyancy(water.submergedPrismVolume(
             settings_.platenLength * (settings_.layer.width + 0.1), bottom, bottom + settings_.platenHeight));
     }
@@ -622,15 +622,24 @@ void RidgeScene::load()
         log("Settled under gravity and buoyancy for " + number(settings_.settleTime) + " s: kinetic energy "
             + number(totalKineticEnergy(*lmp_)) + " J");
     }
-    const double v = settings_.loading.speed;
+    // The test moves off smoothly (loading.rampTravel): a sudden start would
+    // hit the ice with a force spike.
+    const long startStep = lmp_->step();
+    const std::string speed = settings_.loading.speedFormula(startStep, dt_);
+    const std::string travel = settings_.loading.travelFormula(startStep, dt_);
+    lmp_->command("variable zero equal 0");
     if (settings_.test == RidgeTest::flexure)
     {
-        lmp_->command("fix movePlaten all move/mesh mesh platen linear 0 0 " + exactNumber(-v));
+        lmp_->command("variable platenVz equal -" + speed);
+        lmp_->command("fix movePlaten all move/mesh mesh platen linear/variable v_zero v_zero v_platenVz");
     }
     else
     {
-        lmp_->command("fix moveLayer layer move linear " + exactNumber(settings_.test == RidgeTest::directShear ? v : 0.0)
-                      + " 0 " + exactNumber(settings_.test == RidgeTest::pullUp ? v : 0.0));
+        lmp_->command("variable layerV equal " + speed);
+        lmp_->command("variable layerD equal " + travel);
+        lmp_->command(settings_.test == RidgeTest::pullUp
+            ? "fix moveLayer layer move variable NULL NULL v_layerD NULL NULL v_layerV"
+            : "fix moveLayer layer move variable v_layerD NULL NULL v_layerV NULL NULL");
     }
     lmp_->command("run 0 post no");    // set-up of the new fix (the loading runs with pre no)
 

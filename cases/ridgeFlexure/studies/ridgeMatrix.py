@@ -37,7 +37,7 @@ LENGTH, WIDTH = 3.05, 0.94
 QUICK = {
     "keelSuffix": "quick",
     "consolidatedLayer.particleDiameter": 0.065,
-    "test.speed": 0.2,
+    "test.speed": 0.1,
     "test.settleTime": 0.05,
     "assembly.relaxTime": 0.1,
     "assembly.pressSpeed": 0.05,
@@ -68,8 +68,8 @@ def prepare(run, resolution):
         return target
     iceCases.copy_case(CASE, target)
     props = os.path.join(target, "constant", "ridgeProperties")
-    iceCases.set_entry(props, "keel.settledRubble",
-                       '"%s"' % os.path.join(keel_case(run, resolution), "DEM", "settled.h5"))
+    settled = os.path.join(keel_case(run, resolution), "DEM", "settled.h5")
+    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(settled, target))
     iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
     iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
     if resolution == "quick":
