@@ -82,6 +82,22 @@ def copy_case(source, target):
     return target
 
 
+def small_rubble_case(source, path, length, width, thickness, max_time, tilt, entries=None):
+    """A reduced copy of a rubble case (cases/rubbleBeam): a shorter box, a
+    thinner layer, a shorter settling; `entries` sets further dotted entries
+    of its rubbleProperties."""
+    copy_case(source, path)
+    props = os.path.join(path, "constant", "rubbleProperties")
+    set_entry(props, "box.length", length)
+    set_entry(props, "box.width", width)
+    set_entry(props, "blocks.rubbleThickness", thickness)
+    set_entry(props, "settling.maxTime", max_time)
+    set_entry(props, "settling.maxTilt", tilt)
+    for entry, value in (entries or {}).items():
+        set_entry(props, entry, value)
+    return path
+
+
 def run_app(app, case, ranks=1, args=(), log_name="log.run"):
     """Runs an application on a case; returns the wall time in s. Raises on failure."""
     # yield_when_idle: ranks that wait do not busy-spin a shared core (2 ranks on 2 busy cores).

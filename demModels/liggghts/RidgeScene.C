@@ -90,11 +90,13 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
     d.checkKeys({"keel", "consolidatedLayer", "assembly", "ends", "test"});
 
     const Dictionary& keel = d.subDict("keel");
-    keel.checkKeys({"settledRubble", "trimDepth"});
+    keel.checkKeys({"settledRubble", "trimDepth", "length", "width"});
     const std::string keelFile = keel.getString("settledRubble");
     s.keelFile = keelFile.front() == '/' ? keelFile : s.caseDir + "/" + keelFile;
     s.trimDepth = keel.getScalarOrDefault("trimDepth", s.trimDepth);
     if (s.trimDepth < 0.0) keel.fail("trimDepth", "must not be negative");
+    s.layer.length = keel.getPositiveScalarOrDefault("length", s.layer.length);
+    s.layer.width = keel.getPositiveScalarOrDefault("width", s.layer.width);
 
     const Dictionary& cl = d.subDict("consolidatedLayer");
     cl.checkKeys({"thickness", "particleDiameter", "radiusSpread", "solidFraction", "seed"});

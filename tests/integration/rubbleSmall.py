@@ -29,14 +29,7 @@ def check(ok, what):
 
 
 def small_case(path, length, width, thickness, max_time, tilt):
-    iceCases.copy_case(case, path)
-    props = os.path.join(path, "constant", "rubbleProperties")
-    iceCases.set_entry(props, "box.length", length)
-    iceCases.set_entry(props, "box.width", width)
-    iceCases.set_entry(props, "blocks.rubbleThickness", thickness)
-    iceCases.set_entry(props, "settling.maxTime", max_time)
-    iceCases.set_entry(props, "settling.maxTilt", tilt)
-    return path
+    return iceCases.small_rubble_case(case, path, length, width, thickness, max_time, tilt)
 
 
 # 1. One block alone.
