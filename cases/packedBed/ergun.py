@@ -9,14 +9,14 @@ where dp/L reaches the buoyant weight of the bed per volume (1 - e)(rho_p - rho)
       dp/L is the slope of the layer-mean p_rgh over the cell layers inside the
       bed (one cell layer clear of the floor and of the bed's top), the
       porosity that of the same slab from the sphere positions (exact
-      sphere-slab volumes; periodic sides). Writes postProcessing/ergun.json
+      sphere-slab volumes; periodic sides). Writes postProcessing/summary.json
       and ergun.png; exits non-zero when a point is off Ergun by more than
       the tolerance.
   ergun.py fluidisation CASE [--fixed FIXED_CASE]
       free bed under a slowly rising inlet velocity: dp over the bed (inlet
       p_rgh, outlet 0) against time; U_mf where dp first reaches 99 % of the
       bed's buoyant weight per area, and against the Ergun equality for the
-      porosity of the settled bed. Writes postProcessing/fluidisation.json and
+      porosity of the settled bed. Writes postProcessing/summary.json and
       fluidisation.png (with the fixed bed's points when given).
 """
 import argparse
@@ -186,7 +186,7 @@ def fixed_bed(case, tolerance):
         "points": sorted(points, key=lambda p: p["superficial_velocity_m_s"]),
     }
     out = os.path.join(case.path, "postProcessing")
-    write_atomically(os.path.join(out, "ergun.json"), json.dumps(result, indent=2) + "\n")
+    write_atomically(os.path.join(out, "summary.json"), json.dumps(result, indent=2) + "\n")
     for p in result["points"]:
         print(f"U = {p['superficial_velocity_m_s']:.2e} m/s (Re {p['reynolds_number']:5.1f}): dp/L "
               f"{p['dp_per_length_Pa_m']:9.2f} Pa/m, Ergun {p['ergun_Pa_m']:9.2f} ({100 * (p['ratio_to_ergun'] - 1):+.1f} %)")
@@ -271,7 +271,7 @@ def fluidisation(case, fixed_case):
         "final_mean_height_rise_relative": (h_mean[-1] - h0) / (h0 - case.floor),
     }
     out = os.path.join(case.path, "postProcessing")
-    write_atomically(os.path.join(out, "fluidisation.json"), json.dumps(result, indent=2) + "\n")
+    write_atomically(os.path.join(out, "summary.json"), json.dumps(result, indent=2) + "\n")
     print(f"bed: {len(particles)} spheres, porosity {e:.4f}, height {bed_height * 1e3:.1f} mm, "
           f"buoyant weight {weight_per_area:.1f} Pa")
     print(f"U_mf: {u_mf * 1e3:.2f} mm/s where dp reaches the weight; Ergun equality {u_ergun * 1e3:.2f} mm/s "
@@ -285,7 +285,7 @@ def fluidisation(case, fixed_case):
     mu = case.rho * case.nu
     series = [(u, [d / bed_height for d in dp], "-", "iceFoam, free bed, inlet ramp")]
     if fixed_case:
-        fixed = json.load(open(os.path.join(fixed_case, "postProcessing", "ergun.json")))
+        fixed = json.load(open(os.path.join(fixed_case, "postProcessing", "summary.json")))
         pts = [p for p in fixed["points"] if p["superficial_velocity_m_s"] <= max(u)]
         series.append(([p["superficial_velocity_m_s"] for p in pts], [p["dp_per_length_Pa_m"] for p in pts],
                        "o", f"iceFoam, fixed bed (porosity {fixed['porosity']:.3f})"))
