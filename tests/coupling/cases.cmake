@@ -90,3 +90,10 @@ add_test(NAME packedBedSmall_ergun
   COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/packedBed/ergun.py fixed ${COUPLING_WORK}/packedBedSmall
           --tolerance 0.1)
 set_tests_properties(packedBedSmall_ergun PROPERTIES FIXTURES_REQUIRED packedBedSmall)
+
+# settlingBedDEM (the benchmark's DEM-only runs): a level it does not run, and a
+# case without couplingProperties, are refused with the entry named and exit 1.
+add_test(NAME settlingBedDEM_badInput
+  COMMAND sh -c "\"$1\" -hydrodynamics cfd > bad.log 2>&1; a=$?; grep -q \"'-hydrodynamics': must be none or hydrostatic\" bad.log || exit 2; \"$1\" -case /nonexistent -hydrodynamics none > bad.log 2>&1; b=$?; grep -q 'couplingProperties' bad.log && [ $a -eq 1 ] && [ $b -eq 1 ]"
+          sh $<TARGET_FILE:settlingBedDEM>)
+set_tests_properties(settlingBedDEM_badInput PROPERTIES TIMEOUT 60 WORKING_DIRECTORY ${COUPLING_WORK})
