@@ -14,10 +14,11 @@ where dp/L reaches the buoyant weight of the bed per volume (1 - e)(rho_p - rho)
       the tolerance.
   ergun.py fluidisation CASE [--fixed FIXED_CASE]
       free bed under a slowly rising inlet velocity: dp over the bed (inlet
-      p_rgh, outlet 0) against time; U_mf where dp first reaches 99 % of the
-      bed's buoyant weight per area, and against the Ergun equality for the
-      porosity of the settled bed. Writes postProcessing/summary.json and
-      fluidisation.png (with the fixed bed's points when given).
+      p_rgh, outlet 0) in 0.15 s means; U_mf where a fit a U + b U^2 of the
+      packed branch reaches the bed's buoyant weight per area, against the
+      Ergun equality at the settled porosity and Wen-Yu; the plateau and the
+      bed expansion. Writes postProcessing/summary.json and fluidisation.png
+      (with the fixed bed's points when given).
 """
 import argparse
 import csv
