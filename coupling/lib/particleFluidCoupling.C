@@ -51,6 +51,7 @@ particleFluidCoupling::particleFluidCoupling
     momentum_(momentumCouplingModel::New(couplingProperties)),
     locator_(mesh, fraction_()),
     surface_(mesh, couplingProperties),
+    smoothing_(mesh, couplingProperties),
     alpha_(fieldIO(mesh, "alpha", true), mesh, dimensionedScalar("one", dimless, 1.0),
            zeroGradientFvPatchScalarField::typeName),
     Us_(fieldIO(mesh, "Us", true), mesh, dimensionedVector("zero", dimVelocity, Zero),
@@ -151,11 +152,13 @@ void particleFluidCoupling::updateFluidFraction
 
     scalarField& alpha = alpha_.primitiveFieldRef();
     vectorField& Us = Us_.primitiveFieldRef();
+    scalarField solidFraction(solid/V);
+    smoothing_.smooth(solidFraction);
     label clamped = 0;
     scalar lowest = 1;
     forAll(alpha, celli)
     {
-        alpha[celli] = 1 - solid[celli]/V[celli];
+        alpha[celli] = 1 - solidFraction[celli];
         lowest = min(lowest, alpha[celli]);
         if (alpha[celli] < alphaMin_)
         {

@@ -394,3 +394,49 @@ TEST(CouplingInterval, fluidStepNotDividingTheCouplingTimeRefused)
     dict.set("couplingInterval", 0);
     expectFatal([&] { couplingInterval(dict, 1e-5, 1e-5); }, "a whole number >= 1");
 }
+
+
+TEST_F(CouplingExchange, smoothingKeepsTheParticleVolumeAndSpreadsIt)
+{
+    // Particles clustered in one corner cell: smoothing over one cell width
+    // must move volume into the neighbours without losing or making any.
+    std::vector<CouplingParticle> particles;
+    for (int i = 0; i < 27; ++i)
+    {
+        particles.push_back({i + 1, {0.02 + 0.03*(i % 3), 0.02 + 0.03*(i/3 % 3), 0.02 + 0.03*(i/9)},
+                             {0, 0, 0}, 0.025});
+    }
+    const auto U = vectorField("U", Zero);
+    const auto gradp = vectorField("gradp", Zero);
+    const label corner = mesh().findCell(point(0.05, 0.05, 0.05));
+    const label neighbour = mesh().findCell(point(0.15, 0.05, 0.05));
+    scalar cornerUnsmoothed = 0;
+    for (const scalar length : {0.0, 0.05, 0.1, 0.3})
+    {
+        dictionary props(properties("DiFelice", "divided", "semiImplicit"));
+        props.add("smoothingLength", length);
+        particleFluidCoupling coupling(mesh(), props, rho, nu);
+        coupling.update(particles, U, gradp);
+        const scalarField solid(1 - coupling.alpha().primitiveField());
+        EXPECT_NEAR(gSum(solid*mesh().V())/totalVolume(particles), 1.0, 1e-10) << "L = " << length;
+        EXPECT_GE(gMin(solid), -1e-12) << "L = " << length;
+        if (length == 0)
+        {
+            cornerUnsmoothed = solid[corner];
+            EXPECT_EQ(solid[neighbour], 0);
+        }
+        else
+        {
+            EXPECT_LT(solid[corner], cornerUnsmoothed) << "L = " << length;
+            EXPECT_GT(solid[neighbour], 0) << "L = " << length;
+        }
+    }
+}
+
+
+TEST_F(CouplingExchange, negativeSmoothingLengthRefused)
+{
+    dictionary props(properties("DiFelice", "divided", "semiImplicit"));
+    props.add("smoothingLength", -0.01);
+    expectFatal([&]() { particleFluidCoupling coupling(mesh(), props, rho, nu); }, "smoothingLength");
+}

@@ -72,3 +72,28 @@ set_tests_properties(floatingSphere_run PROPERTIES
 add_test(NAME floatingSphere_draft
   COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/checkFloating.py ${COUPLING_WORK}/floatingSphere)
 set_tests_properties(floatingSphere_draft PROPERTIES FIXTURES_REQUIRED floating)
+
+# Packed bed (cases/packedBed), small: 800 glass spheres settled and fixed in a
+# 12 mm periodic column, water pushed through at Re_s = 1, 20 and 5: the
+# pressure gradient inside the bed within 10 % of Ergun at the measured porosity.
+add_test(NAME packedBedSmall_run
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceFoam>
+          ${PROJECT_SOURCE_DIR}/cases/packedBed ${COUPLING_WORK}/packedBedSmall 1
+          "system/blockMeshDict:vertices=((0 0 0) (12 0 0) (12 12 0) (0 12 0) (0 0 108) (12 0 108) (12 12 108) (0 12 108))"
+          "system/blockMeshDict:blocks=(hex (0 1 2 3 4 5 6 7) (2 2 18) simpleGrading (1 1 1))"
+          constant/couplingProperties:demVariables/width=0.012
+          constant/couplingProperties:demVariables/particleCount=800
+          system/controlDict:endTime=0.3)
+set_tests_properties(packedBedSmall_run PROPERTIES
+  FIXTURES_SETUP packedBedSmall TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+add_test(NAME packedBedSmall_ergun
+  COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/packedBed/ergun.py fixed ${COUPLING_WORK}/packedBedSmall
+          --tolerance 0.1)
+set_tests_properties(packedBedSmall_ergun PROPERTIES FIXTURES_REQUIRED packedBedSmall)
+
+# settlingBedDEM (the benchmark's DEM-only runs): a level it does not run, and a
+# case without couplingProperties, are refused with the entry named and exit 1.
+add_test(NAME settlingBedDEM_badInput
+  COMMAND sh -c "\"$1\" -hydrodynamics cfd > bad.log 2>&1; a=$?; grep -q \"'-hydrodynamics': must be none or hydrostatic\" bad.log || exit 2; \"$1\" -case /nonexistent -hydrodynamics none > bad.log 2>&1; b=$?; grep -q 'couplingProperties' bad.log && [ $a -eq 1 ] && [ $b -eq 1 ]"
+          sh $<TARGET_FILE:settlingBedDEM>)
+set_tests_properties(settlingBedDEM_badInput PROPERTIES TIMEOUT 60 WORKING_DIRECTORY ${COUPLING_WORK})
