@@ -114,9 +114,9 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
         cl.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
     }
     s.layer.seed = static_cast<unsigned>(cl.getLabelOrDefault("seed", 1));
-    if (s.layer.thickness > 0.0 && s.layer.thickness < 1.5 * s.layer.particleDiameter)
+    if (s.layer.thickness > 0.0 && s.layer.thickness < 1.25 * s.layer.particleDiameter)
     {
-        cl.fail("thickness", "a layer thinner than 1.5 particle diameters cannot bend; "
+        cl.fail("thickness", "a layer thinner than 1.25 particle diameters cannot bend; "
                 "use smaller particles or 0 for no layer");
     }
 

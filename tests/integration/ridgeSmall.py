@@ -9,7 +9,11 @@
    spheres' submerged volume is rho_i/rho_w of their volume (Archimedes,
    computed here from the saved particles, to 0.1 %);
 3. every freeze-bond joins particles of different blocks (the layer counts as
-   one more block), every ice bond particles of one block.
+   one more block), every ice bond particles of one block;
+4. the same assembled ridge loaded on 1 and on 2 ranks: the platen force
+   agrees to 1e-8 (relative) until the broken-bond count first changes (the
+   2-rank run stops after 4 mm; after fracture the comparison is statistical,
+   as levelIceBeamSmall_oneVsTwoRanks does it).
 
 usage: ridgeSmall.py RUBBLE_CASE RIDGE_CASE WORKDIR RUBBLE_APP RIDGE_APP"""
 import json
@@ -84,6 +88,25 @@ for path in (thin, thick):
     same_block = block[tags_a - 1] == block[tags_b - 1]
     check(np.all(same_block[family == 0]) and not np.any(same_block[family == 1]),
           f"{name}: {np.sum(family == 0)} ice bonds within blocks, {np.sum(family == 1)} freeze-bonds between them")
+
+# 4. The 0.10 m ridge's loading again on 2 ranks, from the same DEM/ridge.h5.
+import shutil  # noqa: E402
+two = iceCases.copy_case(thin, os.path.join(work, "layer10_np2"))
+shutil.copy(os.path.join(thin, "DEM", "ridge.h5"), os.path.join(two, "DEM", "ridge.h5"))
+iceCases.set_entry(os.path.join(two, "system", "controlDict"), "minTravel", 0)
+iceCases.set_entry(os.path.join(two, "system", "controlDict"), "maxTravel", 0.004)
+iceCases.run_app(ridge_app, two, 2, ["-stage", "load"], "log.ridgeDEM")
+a, b = iceCases.curve(thin), iceCases.curve(two)
+start = a["brokenBonds"][0]
+compared, worst = 0, 0.0
+for k in range(min(len(a["force"]), len(b["force"]))):
+    if a["brokenBonds"][k] != start or b["brokenBonds"][k] != start:
+        break
+    if abs(a["force"][k]) > 1e-3 * f_thin:
+        worst = max(worst, abs(a["force"][k] - b["force"][k]) / abs(a["force"][k]))
+        compared += 1
+check(compared >= 5 and worst <= 1e-8,
+      f"1 vs 2 ranks: {compared} loaded samples before a bond breaks, largest force difference {worst:.1e} (<= 1e-8)")
 
 if failures:
     sys.exit("ridgeSmall: %d check(s) failed" % len(failures))

@@ -36,8 +36,8 @@ LENGTH, WIDTH = 3.05, 0.94
 # show the trends, not calibrated strengths (see README).
 QUICK = {
     "keelSuffix": "quick",
-    "consolidatedLayer.particleDiameter": 0.065,
-    "test.speed": 0.1,
+    "consolidatedLayer.particleDiameter": 0.075,
+    "test.speed": 0.2,
     "test.settleTime": 0.05,
     "assembly.relaxTime": 0.1,
     "assembly.pressSpeed": 0.05,
