@@ -8,9 +8,7 @@ Writes to CASE/postProcessing/, each file atomically:
   maps.png         the failure analysis's maps (runs/<keel>/postProcessing/failureAnalysis/
                    moment_*.png) at half load before the peak, the peak and half load after it;
   punchSummary.csv one row per run: peak force, buoyancy share at the peak, broken bonds by mode
-                   and family, wall time, particle-steps/s;
-  rateStudy.csv    where runs/<keel>_halfSpeed exists: the largest force at both platen speeds
-                   over the travel both runs cover.
+                   and family, wall time, particle-steps/s.
 
 usage: plotPunch.py CASE [--runs cuboid empirical]"""
 import argparse
@@ -136,23 +134,6 @@ def main(argv=None):
     rows = [summary_row(name, run) for name, run in runs.items()]
     write_atomically(os.path.join(out, "punchSummary.csv"), table_text(rows))
     print(table_text(rows), end="")
-
-    rate = []
-    for name, run in runs.items():
-        half = os.path.join(a.case, "runs", name + "_halfSpeed")
-        if os.path.exists(os.path.join(half, "postProcessing", "summary.json")):
-            # The largest force over the travel both runs cover.
-            fast, slow = (columns(os.path.join(r, "postProcessing", "platenForce.csv")) for r in (run, half))
-            travel = min(fast["travel"].max(), slow["travel"].max())
-            peaks = [c["force"][c["travel"] <= travel].max() for c in (fast, slow)]
-            rate.append({"keel": name, "travel_m": round(travel, 4),
-                         "speed_m_per_s": summary(run)["platen_speed_m_per_s"], "peak_N": round(peaks[0], 1),
-                         "half_speed_m_per_s": summary(half)["platen_speed_m_per_s"],
-                         "half_speed_peak_N": round(peaks[1], 1),
-                         "peak_change": round(peaks[0] / peaks[1] - 1, 4)})
-    if rate:
-        write_atomically(os.path.join(out, "rateStudy.csv"), table_text(rate))
-        print(table_text(rate), end="")
 
 
 if __name__ == "__main__":
