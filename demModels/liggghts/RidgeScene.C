@@ -87,16 +87,23 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
     }
 
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/ridgeProperties");
-    d.checkKeys({"keel", "consolidatedLayer", "assembly", "ends", "test"});
+    d.checkKeys({"keel", "box", "consolidatedLayer", "assembly", "ends", "test"});
+
+    // The punch box the keel was built in (a reduced keel for tests needs a smaller one).
+    if (d.isDict("box"))
+    {
+        const Dictionary& box = d.subDict("box");
+        box.checkKeys({"length", "width"});
+        s.layer.length = box.getPositiveScalarOrDefault("length", s.layer.length);
+        s.layer.width = box.getPositiveScalarOrDefault("width", s.layer.width);
+    }
 
     const Dictionary& keel = d.subDict("keel");
-    keel.checkKeys({"settledRubble", "trimDepth", "length", "width"});
+    keel.checkKeys({"settledRubble", "trimDepth"});
     const std::string keelFile = keel.getString("settledRubble");
     s.keelFile = keelFile.front() == '/' ? keelFile : s.caseDir + "/" + keelFile;
     s.trimDepth = keel.getScalarOrDefault("trimDepth", s.trimDepth);
     if (s.trimDepth < 0.0) keel.fail("trimDepth", "must not be negative");
-    s.layer.length = keel.getPositiveScalarOrDefault("length", s.layer.length);
-    s.layer.width = keel.getPositiveScalarOrDefault("width", s.layer.width);
 
     const Dictionary& cl = d.subDict("consolidatedLayer");
     cl.checkKeys({"thickness", "particleDiameter", "radiusSpread", "solidFraction", "seed"});
@@ -551,8 +558,10 @@ void RidgeScene::load()
         particles[k].position = s.position;
         particles[k].radius = s.radius;
         particles[k].block = s.block;
-        // Keel-bond tests hold the keel and move the layer (fix move): neither is integrated.
-        types[k] = settings_.test == RidgeTest::flexure ? s.type : fixedType;
+        // Keel-bond tests hold the keel and move the layer (fix move): neither is
+        // integrated. The layer keeps type 1 (LIGGGHTS' granular models need it).
+        types[k] = settings_.test == RidgeTest::flexure ? s.type
+            : static_cast<long>(k) >= geometry.keelParticles ? mobileType : fixedType;
         if (std::abs(s.position.x() - xLoad) < 0.5 * settings_.platenLength + s.radius)
         {
             topUnderPlaten = std::max(topUnderPlaten, s.position.z() + s.radius);
@@ -574,6 +583,10 @@ void RidgeScene::load()
         particles, types, ice_,
         checkpoint ? "read_restart " + loading_->restartFile() : "read_data " + path("DEM/ridge.data")
     );
+    if (settings_.test != RidgeTest::flexure)
+    {
+        lmp_->command("unfix integrate");
+    }
 
     // The test's own fixes come before the water and the bonds (the bonds'
     // hysteretic damping acts on the total force).
@@ -602,7 +615,12 @@ void RidgeScene::load()
     bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
-    waterForces_->defineAddedMassFix();
+    if (settings_.test == RidgeTest::flexure)
+    {
+        // Not in the keel-bond tests: nothing is integrated there, and the fix
+        // would scale the layer's forces that testForce() sums by m / (m + m_a).
+        waterForces_->defineAddedMassFix();
+    }
     lmp_->command("run 0");     // property/atom is reset by the first run's set-up
     if (checkpoint)
     {
@@ -643,7 +661,9 @@ void RidgeScene::load()
             ? "fix moveLayer layer move variable NULL NULL v_layerD NULL NULL v_layerV"
             : "fix moveLayer layer move variable v_layerD NULL NULL v_layerV NULL NULL");
     }
-    lmp_->command("run 0 post no");    // set-up of the new fix (the loading runs with pre no)
+    // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
+    // registered as moving by one, so the motion gets its own.
+    lmp_->command("run 0 post no");
 
     std::ostringstream msg;
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "

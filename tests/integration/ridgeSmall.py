@@ -1,34 +1,40 @@
 #!/usr/bin/python3
-"""Reduced ridge flexure (cases/ridgeFlexure) checks that can fail:
+"""Reduced rubble punch and keel-bond tests (ridgeDEM; cases/rubblePunch, cases/keelBond) on a small
+keel (1.6 x 0.4 m, 0.25 m of rubble) built once by rubbleDEM.
 
-1. a thicker consolidated layer carries a higher failure force (same keel,
-   same freeze-bonds), and the force ratio lies between 1 and the ratio of the
-   layers' bending strengths (D2/D1)^2: the keel and the water carry a share
-   that does not grow with the layer;
-2. the assembled ridge floats: at the water level ridgeDEM chose, the
-   spheres' submerged volume is rho_i/rho_w of their volume (Archimedes,
-   computed here from the saved particles, to 0.1 %);
-3. every freeze-bond joins particles of different blocks (the layer counts as
-   one more block), every ice bond particles of one block;
-4. the same assembled ridge loaded on 1 and on 2 ranks: the platen force
-   agrees to 1e-8 (relative) until the broken-bond count first changes (the
-   2-rank run stops after 4 mm; after fracture the comparison is statistical,
-   as levelIceBeamSmall_oneVsTwoRanks does it).
-
-usage: ridgeSmall.py RUBBLE_CASE RIDGE_CASE WORKDIR RUBBLE_APP RIDGE_APP"""
+usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
+  keel      builds WORK/keel (rubbleDEM -stage settle on a reduced rubbleProperties)
+  punch     (a) the punch's buoyancy share equals rho_w g times the rise of the ice's submerged
+            volume that this script computes itself from the VTK particle frames (spherical caps
+            below geometry.json's water level)
+  pullUp    SET: pull-up of the CL (0.10 m) from the held keel, freeze-bond set SET (ultimate |
+            none: 1 Pa). ultimate: (c) interface strength against the elastic-brittle sum over
+            the layer-keel freeze-bonds of ridge.h5, and against n_bonds x bond area x c_f sigma_t
+            / (L B)
+  compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
+  badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
+            message naming the entry and a non-zero exit"""
 import json
+import math
 import os
+import re
+import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.join(HERE, "..", "..")
+sys.path.insert(0, os.path.join(TOP, "postProcessing"))
 import iceCases  # noqa: E402
 
-rubble_case, ridge_case, work, rubble_app, ridge_app = sys.argv[1:]
+CASES = os.path.join(TOP, "cases")
+LENGTH, WIDTH = 1.6, 0.4            # m, the small keel's box (blocks up to 0.47 m long stay clear of
+                                    # the platen from the fixed ends)
+RHO_W, G = 1000.0, 9.81
 failures = []
-LENGTH, WIDTH = 1.2, 0.4
 
 
 def check(ok, what):
@@ -37,76 +43,238 @@ def check(ok, what):
         failures.append(what)
 
 
-# A small keel of coarse one-layer blocks (the quick resolution's blocks).
-keel = iceCases.small_rubble_case(rubble_case, os.path.join(work, "keel"), LENGTH, WIDTH, 0.3, 8, 15,
-                                  {"blocks.particleDiameter": 0.1, "blocks.layers": 1, "settling.minTime": 2})
-iceCases.run_app(rubble_app, keel, 1, ["-stage", "settle"], "log.rubbleDEM")
+def keel_file(work):
+    return os.path.join(work, "keel", "DEM", "settled.h5")
 
 
-def ridge(name, thickness):
-    path = iceCases.copy_case(ridge_case, os.path.join(work, name))
-    props = os.path.join(path, "constant", "ridgeProperties")
-    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel, "DEM", "settled.h5"))
-    iceCases.set_entry(props, "keel.length", LENGTH)
-    iceCases.set_entry(props, "keel.width", WIDTH)
-    iceCases.set_entry(props, "consolidatedLayer.thickness", thickness)
-    iceCases.set_entry(props, "assembly.relaxTime", 0.05)
-    iceCases.set_entry(props, "assembly.pressSpeed", 0.05)
-    iceCases.set_entry(props, "test.platenLength", 0.15)
-    iceCases.set_entry(props, "test.settleTime", 0.03)
-    iceCases.set_entry(props, "test.speed", 0.1)
-    control = os.path.join(path, "system", "controlDict")
-    iceCases.set_entry(control, "maxTravel", 0.06)
-    iceCases.set_entry(control, "minTravel", 0.005)
-    iceCases.set_entry(control, "writeInterval", 0.01)
-    iceCases.run_app(ridge_app, path, 1, ["-stage", "all"], "log.ridgeDEM")
-    return path
+def build_keel(work, bin_dir):
+    keel = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(work, "keel"))
+    props = os.path.join(keel, "constant", "rubbleProperties")
+    for entry, value in (("box.length", LENGTH), ("box.width", WIDTH), ("blocks.rubbleThickness", 0.25),
+                         ("settling.maxTime", 4), ("settling.minTime", 1), ("settling.maxTilt", 30)):
+        iceCases.set_entry(props, entry, value)
+    wall = iceCases.run_app(os.path.join(bin_dir, "rubbleDEM"), keel, 1, ["-stage", "settle"], "log.rubbleDEM")
+    check(os.path.exists(keel_file(work)), f"small keel settled ({wall:.0f} s): {keel_file(work)}")
 
 
-thin, thick = ridge("layer10", 0.10), ridge("layer15", 0.15)
-f_thin, f_thick = iceCases.summary(thin)["peak_force_N"], iceCases.summary(thick)["peak_force_N"]
-check(f_thick > f_thin, f"a 0.15 m layer fails at a higher force ({f_thick:.0f} N) than a 0.10 m one ({f_thin:.0f} N)")
-check(f_thick / f_thin < 1.5 ** 2 * 1.15,
-      f"force ratio {f_thick / f_thin:.2f} at most (0.15/0.10)^2 = 2.25 (+15 % scatter)")
+def ridge_case(template, path, work, controls=(), entries=()):
+    """A reduced ridgeDEM case from a case template, on the small keel."""
+    case = iceCases.copy_case(os.path.join(CASES, template), path)
+    props = os.path.join(case, "constant", "ridgeProperties")
+    text = open(props).read()
+    open(props, "w").write(text.replace("\nconsolidatedLayer",
+                                        f"\nbox\n{{\n    length {LENGTH};\n    width {WIDTH};\n}}\n\nconsolidatedLayer", 1))
+    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.abspath(keel_file(work)))
+    for entry, value in entries:
+        iceCases.set_entry(props, entry, value)
+    for entry, value in controls:
+        iceCases.set_entry(os.path.join(case, "system", "controlDict"), entry, value)
+    return case
 
-for path in (thin, thick):
-    name = os.path.basename(path)
-    geometry = json.load(open(os.path.join(path, "postProcessing", "geometry.json")))
-    with h5py.File(os.path.join(path, "DEM", "ridge.h5"), "r") as f:
-        x = np.column_stack([f["particles/" + c][()] for c in "xyz"])
-        r = f["particles/radius"][()]
-        block = f["particles/block"][()]
-        tags_a, tags_b = f["bonds/tagA"][()].astype(int), f["bonds/tagB"][()].astype(int)
-        family = f["bonds/family"][()]
-    depth = np.clip(geometry["waterLevel"] - (x[:, 2] - r), 0.0, 2 * r)
-    submerged = np.pi * depth ** 2 * (3 * r - depth) / 3
-    fraction = submerged.sum() / (4 / 3 * np.pi * r ** 3).sum()
-    # The level is set for the layer's pressed position; pressing and relaxing
-    # move the keel by millimetres (a level 1 cm off gives several %).
-    check(abs(fraction / 0.917 - 1) < 1e-3,
-          f"{name}: submerged volume fraction at the chosen water level {fraction:.6f} = rho_i/rho_w 0.917")
-    same_block = block[tags_a - 1] == block[tags_b - 1]
-    check(np.all(same_block[family == 0]) and not np.any(same_block[family == 1]),
-          f"{name}: {np.sum(family == 0)} ice bonds within blocks, {np.sum(family == 1)} freeze-bonds between them")
 
-# 4. The 0.10 m ridge's loading again on 2 ranks, from the same DEM/ridge.h5.
-import shutil  # noqa: E402
-two = iceCases.copy_case(thin, os.path.join(work, "layer10_np2"))
-shutil.copy(os.path.join(thin, "DEM", "ridge.h5"), os.path.join(two, "DEM", "ridge.h5"))
-iceCases.set_entry(os.path.join(two, "system", "controlDict"), "minTravel", 0)
-iceCases.set_entry(os.path.join(two, "system", "controlDict"), "maxTravel", 0.004)
-iceCases.run_app(ridge_app, two, 2, ["-stage", "load"], "log.ridgeDEM")
-a, b = iceCases.curve(thin), iceCases.curve(two)
-start = a["brokenBonds"][0]
-compared, worst = 0, 0.0
-for k in range(min(len(a["force"]), len(b["force"]))):
-    if a["brokenBonds"][k] != start or b["brokenBonds"][k] != start:
-        break
-    if abs(a["force"][k]) > 1e-3 * f_thin:
-        worst = max(worst, abs(a["force"][k] - b["force"][k]) / abs(a["force"][k]))
-        compared += 1
-check(compared >= 5 and worst <= 1e-8,
-      f"1 vs 2 ranks: {compared} loaded samples before a bond breaks, largest force difference {worst:.1e} (<= 1e-8)")
+def vtp_particles(path):
+    """Positions and radii of a particles_*.vtp (ASCII, as VtkWriter writes it)."""
+    piece = ET.parse(path).getroot().find("PolyData/Piece")
+    points = np.array(piece.find("Points/DataArray").text.split(), float).reshape(-1, 3)
+    radius = next(a for a in piece.iter("DataArray") if a.get("Name") == "radius")
+    return points, np.array(radius.text.split(), float)
 
-if failures:
-    sys.exit("ridgeSmall: %d check(s) failed" % len(failures))
+
+def pvd_frames(path):
+    root = ET.parse(path).getroot()
+    return [(float(d.get("timestep")), os.path.join(os.path.dirname(path), d.get("file")))
+            for d in root.iter("DataSet")]
+
+
+def submerged_volume(z, r, level):
+    """Sum of the sphere volumes below z = level: spherical caps of height h = level - (z - r)."""
+    h = np.clip(level - (z - r), 0.0, 2.0 * r)
+    return float(np.sum(math.pi * h * h * (3.0 * r - h) / 3.0))
+
+
+def punch(work, bin_dir):
+    case = ridge_case("rubblePunch", os.path.join(work, "punch"), work,
+                      controls=(("maxTravel", 0.02), ("writeInterval", 0.004), ("checkpointInterval", 0.02),
+                                ("stopAfterHalfLoad", "no")),
+                      # Free ends: a short keel's end blocks would reach under the platen.
+                      entries=(("test.settleTime", 0.05), ("ends.fixedLength", 0)))
+    iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
+    level = json.load(open(os.path.join(case, "postProcessing", "geometry.json")))["waterLevel"]
+    c = iceCases.curve(case)
+    frames = pvd_frames(os.path.join(case, "VTK", "particles.pvd"))
+    rows = []
+    for t, f in frames:
+        k = int(np.argmin(np.abs(np.array(c["time"]) - t)))
+        if abs(c["time"][k] - t) < 1e-9:
+            z, r = vtp_particles(f)
+            rows.append((k, submerged_volume(z[:, 2], r, level)))
+    check(len(rows) >= 3, f"{len(rows)} VTK frames coincide with force samples")
+    (k0, v0), (k1, v1) = rows[0], rows[-1]
+    python_share = RHO_W * G * (v1 - v0)
+    program_share = c["buoyancyShare"][k1] - c["buoyancyShare"][k0]
+    # Frames print coordinates to 10 significant digits (5e-11 m at z ~ 0.5 m); the cap volume
+    # changes by pi r^2 dz per sphere, so round-off alone is below n pi r^2 5e-11 m3.
+    n, r = len(vtp_particles(frames[0][1])[1]), 0.0275
+    rounding = RHO_W * G * n * math.pi * r * r * 5e-11
+    tolerance = max(1e-6 * abs(program_share), 10 * rounding)
+    check(abs(program_share - python_share) <= tolerance,
+          f"buoyancy share {program_share:.6g} N from the program, {python_share:.6g} N from the "
+          f"particles' caps in python (difference {program_share - python_share:.2e} N, tolerance "
+          f"{tolerance:.1e} N) between t = {c['time'][k0]:.4f} and {c['time'][k1]:.4f} s")
+    check(abs(program_share) > 1e3 * tolerance,
+          f"the platen pushes ice under: the share changes by {program_share:.2f} N, a thousand "
+          f"times the tolerance at least")
+    check(abs(c["submergedVolume"][k1] - c["submergedVolume"][k0] - (v1 - v0)) <= tolerance / (RHO_W * G),
+          "the submerged-volume column agrees too")
+
+
+def weaken_freeze_bonds(case):
+    """The `ultimate` set of the case's freezeBondProperties made 1 Pa: blocks and layer touch
+    but are not held together."""
+    bonds = os.path.join(case, "constant", "freezeBondProperties")
+    text = open(bonds).read()
+    line = re.search(r"\n *ultimate *\{[^}]*\}", text)
+    open(bonds, "w").write(text[:line.start()] + "\n        ultimate { tensile 1; shear 1; }" + text[line.end():])
+    iceCases.set_entry(bonds, "fixedSetCoeffs.set", "ultimate")
+
+
+def compare(work):
+    weak, strong = (iceCases.summary(os.path.join(work, f"pullUp_{s}")) for s in ("none", "ultimate"))
+    # Without freeze-bonds nothing holds the layer down but its weight less its buoyancy (and,
+    # once the 1 Pa bonds are gone, the contacts of the pressed layer push it up).
+    check(weak["peak_force_N"] < strong["peak_force_N"] - strong["force_at_start_N"],
+          f"without freeze-bonds the ridge is weaker: pull-up peak {weak['peak_force_N']:.1f} N against "
+          f"{strong['peak_force_N']:.1f} N with the ultimate set (of which "
+          f"{strong['peak_force_N'] - strong['force_at_start_N']:.1f} N above the start)")
+
+
+def interface_bonds(case, ice):
+    """Layer-keel freeze-bonds of DEM/ridge.h5: area, strengths, unit normal (keel to layer)."""
+    with h5py.File(os.path.join(case, "DEM", "ridge.h5"), "r") as f:
+        p, b = f["particles"], f["bonds"]
+        x = np.stack([np.array(p[k]) for k in ("x", "y", "z")], axis=1)
+        radius, block = np.array(p["radius"]), np.array(p["block"]).astype(int)
+        a, c = np.array(b["tagA"]).astype(int) - 1, np.array(b["tagB"]).astype(int) - 1
+        family = np.array(b["family"]).astype(int)
+        tensile, shear = np.array(b["tensileStrength"]), np.array(b["shearStrength"])
+    layer = block == block.max()
+    across = (family == 1) & (layer[a] != layer[c])
+    a, c = a[across], c[across]
+    keel_end = np.where(layer[a], c, a)
+    layer_end = np.where(layer[a], a, c)
+    d = x[layer_end] - x[keel_end]
+    normal = d / np.linalg.norm(d, axis=1)[:, None]
+    area = math.pi * (ice["radiusMultiplier"] * np.minimum(radius[a], radius[c])) ** 2
+    length = radius[a] + radius[c]
+    return area, tensile[across], shear[across], normal, length
+
+
+def elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, direction):
+    """Largest force of rigid bodies moved apart along `direction`: each bond a normal spring
+    E A / L and a shear spring G A / L, loaded by the movement's normal and tangential parts,
+    breaking where its normal force reaches sigma_t A or its shear force tau A."""
+    cos = normal @ direction
+    sin = np.sqrt(np.maximum(0.0, 1.0 - cos * cos))
+    kn, kt = E * area / length, E / (2 * (1 + nu)) * area / length
+    with np.errstate(divide="ignore"):
+        limit_n = np.where(cos > 0, tensile * area / (kn * np.maximum(cos, 1e-300)), np.inf)
+        limit_t = np.where(sin > 0, shear * area / (kt * np.maximum(sin, 1e-300)), np.inf)
+    breaks = np.minimum(limit_n, limit_t)
+    stiffness = kn * cos * cos + kt * sin * sin      # force along `direction` per unit movement
+    order = np.argsort(breaks)
+    # Just before bond order[k] breaks, the movement is breaks[order[k]] and bonds order[k:] hold.
+    held = np.cumsum(stiffness[order][::-1])[::-1]
+    forces = breaks[order] * held
+    return float(forces.max()), float(breaks[order][int(np.argmax(forces))])
+
+
+def pull_up(work, bin_dir, strength_set):
+    # The interface fails at about 11 um of lift (controlDict): 20 um are enough.
+    case = ridge_case("keelBond", os.path.join(work, f"pullUp_{strength_set}"), work,
+                      controls=(("maxTravel", 2e-5),), entries=(("assembly.relaxTime", 0.1),))
+    if strength_set == "none":
+        weaken_freeze_bonds(case)
+    log = os.path.join(case, "log.ridgeDEM")
+    iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
+    s = iceCases.summary(case)
+    if strength_set == "none":
+        return
+    reported = int(next(line for line in open(log) if "between layer and keel" in line)
+                   .split(" between layer and keel")[0].rsplit("(", 1)[1])
+    ice = {"radiusMultiplier": float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"),
+                                                        "bondFamilies.freeze.radiusMultiplier"))}
+    E = float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"), "bondFamilies.freeze.youngsModulus"))
+    nu = float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"), "bondFamilies.freeze.poissonsRatio"))
+    area, tensile, shear, normal, length = interface_bonds(case, ice)
+    check(len(area) == reported > 0, f"layer-keel freeze-bonds in ridge.h5: {len(area)}, the log reports {reported}")
+    interface = LENGTH * WIDTH
+    measured = s["interface_strength_Pa"]
+    check(abs(s["interface_area_m2"] - interface) < 1e-12, f"interface area {s['interface_area_m2']} m2 = L B")
+    simple = reported * area.mean() * tensile.mean() / interface
+    peak, movement = elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, np.array([0.0, 0.0, 1.0]))
+    # The springs, strengths and geometry are the program's; what differs is the sampling of the
+    # curve (0.5 um of a ~10 um rise) and unbonded contacts: 2 %.
+    check(abs(measured / (peak / interface) - 1) < 0.02,
+          f"interface strength {measured * 1e-3:.3f} kPa against {peak / interface * 1e-3:.3f} kPa, the "
+          f"elastic-brittle sum over the {len(area)} bonds (peak at {movement * 1e6:.1f} um; within 2 %)")
+    # The textbook value assumes every bond vertical, all breaking together: an upper bound,
+    # reached by the inclined bonds only in part.
+    check(0.5 * simple < measured <= simple * 1.001,
+          f"interface strength {measured * 1e-3:.3f} kPa against n A c_f sigma_t / (L B) = "
+          f"{simple * 1e-3:.3f} kPa ({reported} bonds, all vertical and breaking together): "
+          f"{measured / simple:.1%} of it (between 50 % and 100 %)")
+    broken = s["layer_keel_bonds_broken"]
+    check(broken == reported, f"all {reported} layer-keel bonds broke ({broken})")
+
+
+def bad_input(work, bin_dir):
+    app = os.path.join(bin_dir, "ridgeDEM")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+    def expect(name, edit, words):
+        case = ridge_case("keelBond", os.path.join(work, "bad", name), work)
+        edit(os.path.join(case, "constant", "ridgeProperties"))
+        r = subprocess.run(["mpirun", "-np", "1", "--oversubscribe", app, "-case", case, "-stage", "assemble"],
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+        out = r.stdout
+        check(r.returncode != 0 and all(w in out for w in words),
+              f"{name}: exit {r.returncode}, message names {words}: "
+              + next((line for line in out.splitlines() if words[0] in line), out[-300:]).strip())
+
+    def drop(entry):
+        def edit(path):
+            lines = open(path).read().splitlines(True)
+            open(path, "w").writelines(line for line in lines if not line.lstrip().startswith(entry + " "))
+        return edit
+
+    expect("missingEntry", drop("thickness"), ["ridgeProperties", "thickness"])
+    expect("unknownTest", lambda p: iceCases.set_entry(p, "test.type", "punchThrough"),
+           ["ridgeProperties", "type", "punchThrough", "flexure"])
+    expect("negativeThickness", lambda p: iceCases.set_entry(p, "consolidatedLayer.thickness", -0.1),
+           ["ridgeProperties", "thickness", "positive"])
+    expect("missingKeel", lambda p: iceCases.set_entry(p, "keel.settledRubble", '"noSuchKeel.h5"'),
+           ["ridgeProperties", "settledRubble", "noSuchKeel.h5"])
+
+
+def main():
+    step, work, bin_dir = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
+    os.makedirs(work, exist_ok=True)
+    if step != "keel" and not os.path.exists(keel_file(work)):
+        sys.exit(f"ridgeSmall.py: the small keel {keel_file(work)} is missing (step keel first)")
+    if step == "keel":
+        build_keel(work, bin_dir)
+    elif step == "punch":
+        punch(work, bin_dir)
+    elif step == "compare":
+        compare(work)
+    elif step == "pullUp":
+        pull_up(work, bin_dir, sys.argv[4])
+    elif step == "badInput":
+        bad_input(work, bin_dir)
+    else:
+        sys.exit(f"ridgeSmall.py: unknown step {step}")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

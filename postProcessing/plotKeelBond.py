@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Keel-to-consolidated-layer bond (cases/keelBond, scenes.md section 8): pull-up and direct shear.
+
+Writes to CASE/postProcessing/, each file atomically:
+  keelBond.png  force minus the force at the start, as interface stress (force / (L B), kPa)
+                against the CL's movement, both tests, with the field range of
+                keelBondField.csv (max and mean of each year) drawn for the matching test;
+  keelBond.csv  per test: peak force, force at the start, interface strength (kPa), field
+                mean and max of each year, bonds broken.
+
+usage: plotKeelBond.py CASE --field keelBondField.csv"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from iceCases import curve, summary, write_atomically  # noqa: E402
+from plotForceDisplacement import save_atomically  # noqa: E402
+
+TESTS = {"pullUp": "tension", "directShear": "shear"}
+
+
+def read_field(path):
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(line for line in handle if not line.startswith("#")))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case")
+    ap.add_argument("--field", required=True)
+    a = ap.parse_args(argv)
+    field = read_field(a.field)
+    runs = {t: os.path.join(a.case, "runs", t) for t in TESTS
+            if os.path.exists(os.path.join(a.case, "runs", t, "postProcessing", "summary.json"))}
+    if not runs:
+        sys.exit(f"plotKeelBond.py: no finished test in {a.case}/runs")
+
+    fig, axes = plt.subplots(1, len(runs), figsize=(6.5 * len(runs), 4.5), squeeze=False)
+    rows = []
+    for ax, (test, run) in zip(axes[0], runs.items()):
+        kind = TESTS[test]
+        s, c = summary(run), curve(run)
+        area = s["interface_area_m2"]
+        um = np.array(c["travel"]) * 1e6
+        stress = (np.array(c["force"]) - s["force_at_start_N"]) / area * 1e-3
+        ax.plot(um, stress, color="k", lw=1.5, label="DEM, ultimate freeze-bond set")
+        for year, colour in zip(field, ("tab:blue", "tab:red")):
+            mean, top = float(year[f"{kind}_mean_kPa"]), float(year[f"{kind}_max_kPa"])
+            ax.axhspan(mean, top, color=colour, alpha=0.15)
+            ax.axhline(mean, color=colour, ls="--", lw=1,
+                       label=f"field {year['year']} (air {year['air_temperature_C']} C): mean {mean:g}, max {top:g} kPa")
+            ax.axhline(top, color=colour, lw=1)
+        ax.set_xlabel("CL movement (um)")
+        ax.set_ylabel("(force - force at start) / (L B)  (kPa)")
+        ax.set_title(f"{test} ({kind}): interface strength {s['interface_strength_Pa'] * 1e-3:.1f} kPa")
+        ax.legend(fontsize=7)
+        row = {"test": test, "peak_force_N": round(s["peak_force_N"], 1),
+               "force_at_start_N": round(s["force_at_start_N"], 1),
+               "interface_area_m2": round(area, 4),
+               "interface_strength_kPa": round(s["interface_strength_Pa"] * 1e-3, 2),
+               "travel_at_peak_um": round(s["travel_at_peak_m"] * 1e6, 2),
+               "layer_keel_bonds_broken": s["layer_keel_bonds_broken"],
+               "broken_tension": s["broken_by_mode"]["tension"], "broken_shear": s["broken_by_mode"]["shear"],
+               "wall_s": round(s["wall_s"], 1)}
+        for year in field:
+            row[f"field_{year['year']}_mean_kPa"] = float(year[f"{kind}_mean_kPa"])
+            row[f"field_{year['year']}_max_kPa"] = float(year[f"{kind}_max_kPa"])
+        rows.append(row)
+    out = os.path.join(a.case, "postProcessing")
+    save_atomically(fig, os.path.join(out, "keelBond.png"))
+    names = list(dict.fromkeys(k for r in rows for k in r))
+    lines = [",".join(names)] + [",".join(str(r.get(k, "")) for k in names) for r in rows]
+    write_atomically(os.path.join(out, "keelBond.csv"), "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

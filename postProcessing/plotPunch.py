@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""Rubble punch (cases/rubblePunch, scenes.md section 6): the punches of the keels together.
+
+Writes to CASE/postProcessing/, each file atomically:
+  punch.png        total platen force, its buoyancy share (rho_w g times the rise of the ice's
+                   submerged volume) and force minus buoyancy share, against platen travel;
+  breakage.png     broken bonds against time by mode, one panel per keel;
+  maps.png         the failure analysis's maps (runs/<keel>/postProcessing/failureAnalysis/
+                   moment_*.png) at half load before the peak, the peak and half load after it;
+  punchSummary.csv one row per run: peak force, buoyancy share at the peak, broken bonds by mode
+                   and family, wall time, particle-steps/s.
+
+usage: plotPunch.py CASE [--runs cuboid empirical]"""
+import argparse
+import csv
+import io
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from breakageRecord import MODES, read_breakage  # noqa: E402
+from iceCases import summary, write_atomically  # noqa: E402
+from plotForceDisplacement import save_atomically  # noqa: E402
+
+MOMENTS = ("halfLoadBeforePeak", "peak", "halfLoadAfterPeak")
+MODE_STYLES = {"tension": "-", "shear": "--", "twist": ":", "bending": "-."}
+
+
+def columns(path):
+    with open(path, newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def plot_forces(runs, out):
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for colour, (name, run) in zip(("tab:blue", "tab:orange", "tab:green", "tab:red"), runs.items()):
+        c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
+        mm = c["travel"] * 1e3
+        ax.plot(mm, c["force"] * 1e-3, color=colour, lw=1.5, label=f"{name}: total platen force")
+        ax.plot(mm, c["buoyancyShare"] * 1e-3, color=colour, ls="--", lw=1.2,
+                label=f"{name}: buoyancy share")
+        ax.plot(mm, (c["force"] - c["buoyancyShare"]) * 1e-3, color=colour, ls=":", lw=1.2,
+                label=f"{name}: force - buoyancy share")
+    ax.axhline(0, color="grey", lw=0.5)
+    ax.set_xlabel("platen travel (mm)")
+    ax.set_ylabel("force (kN)")
+    ax.set_title("Rubble punch: platen force and its buoyancy share (hydrostatic water)")
+    ax.legend(fontsize=8)
+    save_atomically(fig, out)
+    plt.close(fig)
+
+
+def plot_breakage(runs, out):
+    fig, axes = plt.subplots(1, len(runs), figsize=(6 * len(runs), 4.5), squeeze=False, sharey=True)
+    for ax, (name, run) in zip(axes[0], runs.items()):
+        record = read_breakage(os.path.join(run, "postProcessing", "breakage.h5"))
+        for code, mode in MODES.items():
+            for family, colour in ((0, "tab:grey"), (1, "tab:red")):
+                t = np.sort(record["time"][(record["mode"] == code) & (record["family"] == family)])
+                if len(t):
+                    ax.step(t, np.arange(1, len(t) + 1), where="post", color=colour,
+                            ls=MODE_STYLES[mode],
+                            label=f"{mode}, {'ice' if family == 0 else 'freeze'}-bonds")
+        ax.set_title(f"{name}: broken bonds by mode")
+        ax.set_xlabel("time (s)")
+        ax.legend(fontsize=8)
+    axes[0][0].set_ylabel("broken bonds (cumulative)")
+    save_atomically(fig, out)
+    plt.close(fig)
+
+
+def plot_maps(runs, out):
+    fig, axes = plt.subplots(len(runs), len(MOMENTS), figsize=(7 * len(MOMENTS), 4.2 * len(runs)),
+                             squeeze=False)
+    for row, (name, run) in zip(axes, runs.items()):
+        for ax, moment in zip(row, MOMENTS):
+            ax.axis("off")
+            png = os.path.join(run, "postProcessing", "failureAnalysis", f"moment_{moment}.png")
+            if os.path.exists(png):
+                ax.imshow(mpimg.imread(png))
+                ax.set_title(f"{name}: {moment}", fontsize=10)
+            else:
+                ax.set_title(f"{name}: {moment} not reached", fontsize=10)
+    save_atomically(fig, out)
+    plt.close(fig)
+
+
+def table_text(rows):
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=list(rows[0]), lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return text.getvalue()
+
+
+def summary_row(name, run):
+    s = summary(run)
+    return {"run": name, "platen_speed_m_per_s": s["platen_speed_m_per_s"],
+            "peak_force_N": round(s["peak_force_N"], 1),
+            "travel_at_peak_mm": round(s["travel_at_peak_m"] * 1e3, 2),
+            "buoyancy_share_at_peak_N": round(s["buoyancy_share_at_peak_N"], 1),
+            "buoyancy_share_fraction": round(s["buoyancy_share_at_peak_N"] / s["peak_force_N"], 3),
+            "peak_without_buoyancy_N": round(s["peak_force_without_buoyancy_N"], 1),
+            "broken_bonds": s["broken_bonds"],
+            **{f"broken_{m}": s["broken_by_mode"][m] for m in MODES.values()},
+            **{f"broken_{f}": n for f, n in s["broken_by_family"].items()},
+            "particles": s["particles"], "ranks": s["ranks"], "wall_s": round(s["wall_s"], 1),
+            "particle_steps_per_s": round(s["particle_steps_per_s"], -3)}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case")
+    ap.add_argument("--runs", nargs="+", default=["cuboid", "empirical"])
+    a = ap.parse_args(argv)
+    out = os.path.join(a.case, "postProcessing")
+    os.makedirs(out, exist_ok=True)
+    runs = {name: os.path.join(a.case, "runs", name) for name in a.runs
+            if os.path.exists(os.path.join(a.case, "runs", name, "postProcessing", "summary.json"))}
+    if not runs:
+        sys.exit(f"plotPunch.py: no finished run among {a.runs} in {a.case}/runs")
+    plot_forces(runs, os.path.join(out, "punch.png"))
+    plot_breakage(runs, os.path.join(out, "breakage.png"))
+    plot_maps(runs, os.path.join(out, "maps.png"))
+    rows = [summary_row(name, run) for name, run in runs.items()]
+    write_atomically(os.path.join(out, "punchSummary.csv"), table_text(rows))
+    print(table_text(rows), end="")
+
+
+if __name__ == "__main__":
+    main()
