@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Reduced three-point bending beams (short span, fewer particles) through
+threePointBendingDEM.
+
+usage: threePointBendingSmall.py scaling CASE WORKDIR APP
+       threePointBendingSmall.py run CASE WORKDIR APP NP
+
+scaling: two beams D1 and D2 = 1.5 D1 thick on 2 ranks; checks
+  (a) the thicker beam fails at a higher force, F2/F1 within 15 % of
+      (D2/D1)^2 times the targets' size-effect ratio sigma(V2)/sigma(V1);
+  (b) the elastic slope (force against mid-span deflection) scales as D^3
+      (Euler-Bernoulli) within 10 %.
+run: one small beam on NP ranks, for the 1 vs 2 rank comparison
+     (compareBeamRuns.py)."""
+import os
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+THICKNESS = (0.10, 0.15)
+SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "packing.particleDiameter": 0.04}
+
+
+def small_case(case, work):
+    iceCases.copy_case(case, work)
+    props = os.path.join(work, "constant", "bendingProperties")
+    for key, value in SMALL.items():
+        iceCases.set_entry(props, key, value)
+    control = os.path.join(work, "system", "controlDict")
+    iceCases.set_entry(control, "writeInterval", 0.05)
+    iceCases.set_entry(control, "checkpointInterval", 1.0)
+    return work
+
+
+def run(case, work, app, ranks, thickness):
+    small_case(case, work)
+    wall = iceCases.run_app(app, work, ranks, ["-thickness", thickness], "log.threePointBendingDEM")
+    s = iceCases.summary(work)
+    print(f"D = {thickness} m on {ranks} rank(s): {s['particles']} particles, failure {s['failure_force_N']:.1f} N, "
+          f"sigma_f {s['flexural_strength_Pa'] / 1e3:.1f} kPa, slope {s['elastic_slope_deflection_N_per_m']:.4g} N/m, "
+          f"E_eff {s['effective_modulus_Pa'] / 1e9:.3f} GPa, KE/elastic at peak {s['kinetic_to_elastic_energy_at_peak']:.2g}, "
+          f"{s['steps']} steps, {wall:.0f} s")
+    return s
+
+
+def scaling(case, work, app):
+    a, b = (run(case, os.path.join(work, f"D{d}"), app, 2, d) for d in THICKNESS)
+    failures, ok = [], True
+
+    def check(name, value, expected, tolerance):
+        nonlocal ok
+        err = value / expected - 1.0
+        good = abs(err) <= tolerance
+        ok &= good
+        print(f"{'ok  ' if good else 'FAIL'} {name}: {value:.4g} against {expected:.4g} ({err:+.1%}, tolerance {tolerance:.0%})")
+
+    ratio_d = b["thickness_m"] / a["thickness_m"]
+    target_ratio = b["target_strength_Pa"] / a["target_strength_Pa"]
+    if not b["failure_force_N"] > a["failure_force_N"]:
+        print("FAIL the thicker beam does not fail at a higher force")
+        ok = False
+    check("failure force ratio F2/F1 vs (D2/D1)^2 sigma2/sigma1", b["failure_force_N"] / a["failure_force_N"],
+          ratio_d ** 2 * target_ratio, 0.15)
+    check("elastic slope ratio vs (D2/D1)^3", b["elastic_slope_deflection_N_per_m"] / a["elastic_slope_deflection_N_per_m"],
+          ratio_d ** 3, 0.10)
+    for s in (a, b):
+        assert s["elastic_slope_deflection_fit_R2"] > 0.98, s["elastic_slope_deflection_fit_R2"]
+    print(f"{'1 passed, 0 failed' if ok else 'failed'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    mode, case, work, app, *rest = sys.argv[1:]
+    if mode == "scaling":
+        sys.exit(scaling(case, work, app))
+    run(case, work, app, int(rest[0]), THICKNESS[0])
