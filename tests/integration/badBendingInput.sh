@@ -23,12 +23,12 @@ check() {   # name, sed expression on constant/bendingProperties, expected text,
 }
 
 check missingThickness  '/thickness /d'                       "beam.thickness"
-check zeroThickness     's/thickness .*;/thickness 0;/'        "beam.thickness"
-check negativeThickness 's/thickness .*;/thickness -0.1;/'     "beam.thickness"
-check spanBeyondBeam    's/span .*;/span 3.2;/'                "supports.span"
+check zeroThickness     's/thickness [^;]*;/thickness 0;/'        "beam.thickness"
+check negativeThickness 's/thickness [^;]*;/thickness -0.1;/'     "beam.thickness"
+check spanBeyondBeam    's/span [^;]*;/span 3.2;/'                "supports.span"
 check missingSpan       '/span /d'                             "supports.span"
-check badDiameter       's/particleDiameter .*;/particleDiameter abc;/' "packing.particleDiameter"
-check particleTooBig    's/ particleDiameter .*;/ particleDiameter 0.12;/' "packing.particleDiameter"
+check badDiameter       's/particleDiameter [^;]*;/particleDiameter abc;/' "packing.particleDiameter"
+check particleTooBig    's/ particleDiameter [^;]*;/ particleDiameter 0.12;/' "packing.particleDiameter"
 check unknownEntry      's/span /spam 1; span /'               "supports.spam"
 check badOption         ''                                     "-thickness" -thickness -0.1
 

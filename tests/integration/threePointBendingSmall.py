@@ -5,9 +5,14 @@ threePointBendingDEM.
 usage: threePointBendingSmall.py scaling CASE WORKDIR APP
        threePointBendingSmall.py run CASE WORKDIR APP NP
 
-scaling: two beams D1 and D2 = 1.5 D1 thick on 2 ranks; checks
-  (a) the thicker beam fails at a higher force, F2/F1 within 15 % of
-      (D2/D1)^2 times the targets' size-effect ratio sigma(V2)/sigma(V1);
+scaling: two beams D1 and D2 = 1.5 D1 thick on 1 rank, with particles
+  1.5 times larger in the thicker one (the same 2.5 particles through the
+  thickness: the pack's effective modulus and strength depend on that count,
+  see the case README, and beam theory assumes them the same); checks
+  (a) the thicker beam fails at a higher force, F2/F1 within 10 % of
+      (D2/D1)^2 sigma2/sigma1 with sigma2/sigma1 = 1 (strain-based bond
+      strengths carry no size effect at a fixed particle count through the
+      thickness);
   (b) the elastic slope (force against mid-span deflection) scales as D^3
       (Euler-Bernoulli) within 10 %.
 run: one small beam on NP ranks, for the 1 vs 2 rank comparison
@@ -20,13 +25,15 @@ sys.path.insert(0, os.path.join(here, "..", "..", "postProcessing"))
 import iceCases  # noqa: E402
 
 THICKNESS = (0.10, 0.15)
-SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "packing.particleDiameter": 0.04}
+PARTICLE_DIAMETER = (0.04, 0.06)
+# The ramp is about the fundamental period of these shorter beams.
+SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "platen.rampTime": 0.03}
 
 
-def small_case(case, work):
+def small_case(case, work, particle_diameter):
     iceCases.copy_case(case, work)
     props = os.path.join(work, "constant", "bendingProperties")
-    for key, value in SMALL.items():
+    for key, value in dict(SMALL, **{"packing.particleDiameter": particle_diameter}).items():
         iceCases.set_entry(props, key, value)
     control = os.path.join(work, "system", "controlDict")
     iceCases.set_entry(control, "writeInterval", 0.05)
@@ -34,8 +41,8 @@ def small_case(case, work):
     return work
 
 
-def run(case, work, app, ranks, thickness):
-    small_case(case, work)
+def run(case, work, app, ranks, thickness, particle_diameter):
+    small_case(case, work, particle_diameter)
     wall = iceCases.run_app(app, work, ranks, ["-thickness", thickness], "log.threePointBendingDEM")
     s = iceCases.summary(work)
     print(f"D = {thickness} m on {ranks} rank(s): {s['particles']} particles, failure {s['failure_force_N']:.1f} N, "
@@ -46,7 +53,7 @@ def run(case, work, app, ranks, thickness):
 
 
 def scaling(case, work, app):
-    a, b = (run(case, os.path.join(work, f"D{d}"), app, 2, d) for d in THICKNESS)
+    a, b = (run(case, os.path.join(work, f"D{d}"), app, 1, d, p) for d, p in zip(THICKNESS, PARTICLE_DIAMETER))
     failures, ok = [], True
 
     def check(name, value, expected, tolerance):
@@ -57,16 +64,16 @@ def scaling(case, work, app):
         print(f"{'ok  ' if good else 'FAIL'} {name}: {value:.4g} against {expected:.4g} ({err:+.1%}, tolerance {tolerance:.0%})")
 
     ratio_d = b["thickness_m"] / a["thickness_m"]
-    target_ratio = b["target_strength_Pa"] / a["target_strength_Pa"]
     if not b["failure_force_N"] > a["failure_force_N"]:
         print("FAIL the thicker beam does not fail at a higher force")
         ok = False
-    check("failure force ratio F2/F1 vs (D2/D1)^2 sigma2/sigma1", b["failure_force_N"] / a["failure_force_N"],
-          ratio_d ** 2 * target_ratio, 0.15)
+    check("failure force ratio F2/F1 vs (D2/D1)^2", b["failure_force_N"] / a["failure_force_N"], ratio_d ** 2, 0.10)
     check("elastic slope ratio vs (D2/D1)^3", b["elastic_slope_deflection_N_per_m"] / a["elastic_slope_deflection_N_per_m"],
           ratio_d ** 3, 0.10)
     for s in (a, b):
-        assert s["elastic_slope_deflection_fit_R2"] > 0.98, s["elastic_slope_deflection_fit_R2"]
+        if not s["elastic_slope_deflection_fit_R2"] > 0.95:
+            print(f"FAIL the rise of D = {s['thickness_m']} m is not linear (R^2 {s['elastic_slope_deflection_fit_R2']:.3f})")
+            ok = False
     print(f"{'1 passed, 0 failed' if ok else 'failed'}")
     return 0 if ok else 1
 
@@ -75,4 +82,4 @@ if __name__ == "__main__":
     mode, case, work, app, *rest = sys.argv[1:]
     if mode == "scaling":
         sys.exit(scaling(case, work, app))
-    run(case, work, app, int(rest[0]), THICKNESS[0])
+    run(case, work, app, int(rest[0]), THICKNESS[0], PARTICLE_DIAMETER[0])
