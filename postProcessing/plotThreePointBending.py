@@ -23,10 +23,11 @@ import iceCases  # noqa: E402
 
 
 def table(summaries):
-    head = ["thickness_m", "particles", "bonds", "failure_force_N", "sigma_f_kPa", "target_kPa", "error",
+    head = ["thickness_m", "particles", "bonds", "first_drop_N", "failure_force_N", "sigma_f_kPa", "target_kPa", "error",
             "deflection_at_failure_mm", "E_eff_GPa", "KE_over_elastic_at_peak", "broken_bonds", "steps",
             "wall_s", "particle_steps_per_s"]
-    rows = [[f"{s['thickness_m']:.2f}", str(s["particles"]), str(s["bonds"]), f"{s['failure_force_N']:.0f}",
+    rows = [[f"{s['thickness_m']:.2f}", str(s["particles"]), str(s["bonds"]), f"{s['first_peak_force_N']:.0f}",
+             f"{s['failure_force_N']:.0f}",
              f"{s['flexural_strength_Pa'] / 1e3:.1f}", f"{s['target_strength_Pa'] / 1e3:.0f}",
              f"{s['strength_error']:+.4f}", f"{s['deflection_at_failure_m'] * 1e3:.1f}",
              f"{s['effective_modulus_Pa'] / 1e9:.3f}", f"{s['kinetic_to_elastic_energy_at_peak']:.2g}",
@@ -34,7 +35,7 @@ def table(summaries):
             for s in summaries]
     csv_text = "\n".join(",".join(r) for r in [head] + rows) + "\n"
     md = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    md += ["| " + " | ".join(r[:6] + [f"{float(r[6]):+.1%}"] + r[7:]) + " |" for r in rows]
+    md += ["| " + " | ".join(r[:7] + [f"{float(r[7]):+.1%}"] + r[8:]) + " |" for r in rows]
     return csv_text, "\n".join(md) + "\n"
 
 

@@ -27,7 +27,7 @@ import iceCases  # noqa: E402
 THICKNESS = (0.10, 0.15)
 PARTICLE_DIAMETER = (0.04, 0.06)
 # The ramp is about the fundamental period of these shorter beams.
-SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "platen.rampTime": 0.03}
+SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "platen.speed": 0.1, "platen.rampTime": 0.03}
 
 
 def small_case(case, work, particle_diameter):
