@@ -198,7 +198,6 @@ void BeamScene::log(const std::string& line) const
 
 void BeamScene::buildParticles()
 {
-    // Every rank builds the same packing (a pure function of its inputs).
     RandomPackingSpec spec;
     spec.lo = Vec3::Zero();
     spec.hi = Vec3(settings_.length, settings_.width, settings_.thickness);
@@ -206,34 +205,15 @@ void BeamScene::buildParticles()
     spec.radiusSpread = settings_.radiusSpread;
     spec.targetSolidFraction = settings_.solidFraction;
     spec.seed = settings_.seed;
-    RandomPackingStats stats;
-    particles_ = buildRandomPacking(spec, stats);
-    markFixedEnds(particles_, 0, settings_.padLength, spec.lo, spec.hi);
-
-    std::ostringstream msg;
-    msg << "Packing: " << particles_.size() << " particles, radius " << stats.minRadius << " - "
-        << stats.maxRadius << " m, solid fraction " << stats.solidFraction
-        << ", largest overlap " << stats.maxOverlap << " of the mean radius";
-    log(msg.str());
-
-    BondBuilder builder(ice_);
-    bondPairs_ = builder.build(particles_);
-    bondStats_ = builder.statistics();
-    log("Bonds: " + bondStats_.summary());
-
-    double minMass = HUGE_VAL;
-    for (const ParticleSpec& p : particles_)
-    {
-        minMass = std::min(minMass, ice_.material.density * 4.0 / 3.0 * M_PI * std::pow(p.radius, 3));
-    }
-    contact_ = ContactParameters::of(ice_, 2.0 * stats.meanRadius, minMass);
-
-    const TimeStepLimits limits = timeStepLimits(ice_, stats.minRadius, bondStats_.maxBondsPerParticle);
-    dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
-    std::ostringstream step;
-    step << "Time step " << dt_ << " s (limit " << limits.limit << " s; stiffest spring: "
-         << limits.stiffestSpringName << ", critical " << limits.stiffestSpring << " s)";
-    log(step.str());
+    body_ = buildBondedBody
+    (
+        spec, ice_, path("constant/iceProperties"),
+        [&](std::vector<ParticleSpec>& particles)
+        {
+            markFixedEnds(particles, 0, settings_.padLength, spec.lo, spec.hi);
+        },
+        [this](const std::string& line) { log(line); }
+    );
 }
 
 
@@ -250,7 +230,7 @@ void BeamScene::writeLiggghtsInputs() const
     (
         path("DEM/packing.data"),
         "level-ice beam packing written by iceBeamDEM",
-        particles_,
+        body_.particles,
         ice_.material.density,
         Vec3(-margin, -settings_.initialGap - settings_.platenDiameter - margin, -margin),
         Vec3(settings_.length + margin, settings_.width + settings_.loading.maxTravel + margin, settings_.thickness + margin),
@@ -277,11 +257,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
     LiggghtsInstance& lmp = *lmp_;
 
-    double maxRadius = 0.0;
-    for (const ParticleSpec& p : particles_)
-    {
-        maxRadius = std::max(maxRadius, p.radius);
-    }
+    const double maxRadius = body_.maxRadius();
     const double skin = 0.2 * maxRadius;
 
     const std::string readParticles = resume
@@ -293,10 +269,10 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
         {"platenStl", path("DEM/platen.stl")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, maxRadius, skin))},
         {"neighbourSkin", exactNumber(skin)},
-        {"dt", exactNumber(dt_)},
+        {"dt", exactNumber(body_.dt)},
         {"platenSpeed", exactNumber(settings_.platenSpeed)}
     };
-    const ScriptVariables contactVars = contactVariables(contact_);
+    const ScriptVariables contactVars = contactVariables(body_.contact);
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
     defineScriptVariables(lmp, variables, path("DEM/variables.generated"), "iceBeamDEM");
 
@@ -307,21 +283,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     }
     lmp.runScript(script);
 
-    bonds_ = std::make_unique<IceBondForces>(lmp, ice_, contact_.normalStiffness);
-    lmp.command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
-    // LIGGGHTS' set-up of the first run resets property/atom values to their
-    // defaults, so the bonds are stored after it.
-    lmp.command("run 0");
-    if (resume)
-    {
-        loading_->resumeFrom(*resume, lmp, *bonds_);
-    }
-    else
-    {
-        bonds_->createBonds(particles_, bondPairs_);
-    }
-    lmp.command("run 0");   // forces of the first step with the bonds in place
+    bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
 }
 
 
@@ -346,29 +308,7 @@ long BeamScene::freezeEjecta()
         settings_.width + settings_.loading.maxTravel + clearance,
         settings_.thickness + clearance
     );
-    LAMMPS_NS::LAMMPS& engine = lmp_->engine();
-    LAMMPS_NS::Atom& atom = *engine.atom;
-    const int mobileBit = engine.group->bitmask[engine.group->find("mobile")];
-    long frozen = 0;
-    for (int i = 0; i < atom.nlocal; ++i)
-    {
-        if (!(atom.mask[i] & mobileBit))
-        {
-            continue;
-        }
-        const Vec3 x(atom.x[i][0], atom.x[i][1], atom.x[i][2]);
-        if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any())
-        {
-            atom.mask[i] &= ~mobileBit;
-            atom.type[i] = fixedType;
-            for (int k = 0; k < 3; ++k)
-            {
-                atom.v[i][k] = atom.omega[i][k] = 0.0;
-            }
-            ++frozen;
-        }
-    }
-    return sumOverRanks(comm_, frozen);
+    return stopParticlesOutside(*lmp_, lo, hi, fixedType);
 }
 
 
@@ -380,8 +320,8 @@ void BeamScene::run()
     buildParticles();
     loading_ = std::make_unique<PlatenLoading>
     (
-        comm_, options_.caseDir, "iceBeamDEM", settings_.loading, dt_,
-        static_cast<long>(particles_.size()), fixedType
+        comm_, options_.caseDir, "iceBeamDEM", settings_.loading, body_.dt,
+        static_cast<long>(body_.particles.size()), fixedType
     );
     std::unique_ptr<Checkpoint> resume;
     if (options_.resume)
@@ -482,16 +422,16 @@ void BeamScene::writeSummary(double wallSeconds) const
     for (int b = 0; b < bins; ++b) j << (b ? ", " : "") << alongSpan[b];
     j << "]\n  },\n"
       << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
-      << "  \"particles\": " << particles_.size() << ",\n"
+      << "  \"particles\": " << body_.particles.size() << ",\n"
       << "  \"ejected_particles_stopped\": " << state.frozenEjecta << ",\n"
-      << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
-      << "  \"bonds_per_particle\": " << bondStats_.meanBondsPerParticle << ",\n"
+      << "  \"bonds\": " << body_.bondStats.totalBonds << ",\n"
+      << "  \"bonds_per_particle\": " << body_.bondStats.meanBondsPerParticle << ",\n"
       << "  \"steps\": " << steps << ",\n"
-      << "  \"dt\": " << dt_ << ",\n"
+      << "  \"dt\": " << body_.dt << ",\n"
       << "  \"ranks\": " << ranks_ << ",\n"
       << "  \"wall_s\": " << wallSeconds << ",\n"
       << "  \"loop_wall_s\": " << loopSeconds << ",\n"
-      << "  \"particle_steps_per_s\": " << loopSteps * particles_.size() / loopSeconds << "\n"
+      << "  \"particle_steps_per_s\": " << loopSteps * body_.particles.size() / loopSeconds << "\n"
       << "}\n";
     writeFileAtomically(path("postProcessing/summary.json"), j.str());
 

@@ -1,0 +1,573 @@
+#include "ThreePointBendingScene.H"
+
+#include "AppMain.H"
+#include "AtomicFile.H"
+#include "BreakageRecord.H"
+#include "Dictionary.H"
+#include "ForceCurveAnalysis.H"
+#include "IceBondForces.H"
+#include "InputError.H"
+#include "JsonObject.H"
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+#include "RandomPacking.H"
+#include "SceneSetup.H"
+#include "StlWriter.H"
+
+#include "atom.h"
+#include "fix.h"
+#include "lammps.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+constexpr int mobileType = 1;
+constexpr int fixedType = 2;
+const char* const application = "threePointBendingDEM";
+
+std::string number(double v)
+{
+    std::ostringstream s;
+    s << std::setprecision(10) << v;
+    return s.str();
+}
+
+//- The positive entry `key` of d (InputError naming it otherwise).
+double positiveEntry(const Dictionary& d, const std::string& key)
+{
+    const double v = d.getScalar(key);
+    if (!(v > 0.0))
+    {
+        d.fail(key, number(v) + " is not allowed; expected a positive number");
+    }
+    return v;
+}
+
+//- Height of the axis of a cylinder across the beam (along y, at x = xAxis)
+//  at which it just touches the beam from below (side -1) or above (+1).
+double touchingAxisHeight(const std::vector<ParticleSpec>& particles, double xAxis, double radius, int side)
+{
+    double height = -side * HUGE_VAL;
+    for (const ParticleSpec& p : particles)
+    {
+        const double reach = radius + p.radius;
+        const double dx = p.position.x() - xAxis;
+        if (std::abs(dx) < reach)
+        {
+            const double touching = p.position.z() + side * std::sqrt(reach * reach - dx * dx);
+            height = side < 0 ? std::min(height, touching) : std::max(height, touching);
+        }
+    }
+    return height;
+}
+
+} // namespace
+
+
+ThreePointBendingOptions ThreePointBendingOptions::fromArguments(int argc, char** argv)
+{
+    ThreePointBendingOptions o;
+    const std::string usage = std::string("usage: ") + application
+        + " [-case DIR] [-thickness M] [-quick] [-platenSpeed M_PER_S] [-steps N] [-resume]";
+    for (int k = 1; k < argc; ++k)
+    {
+        const std::string arg = argv[k];
+        if (arg == "-case" && k + 1 < argc) o.caseDir = argv[++k];
+        else if (arg == "-thickness") o.thickness = positiveNumberArgument(argc, argv, k);
+        else if (arg == "-platenSpeed") o.platenSpeed = positiveNumberArgument(argc, argv, k);
+        else if (arg == "-steps") o.steps = std::lround(positiveNumberArgument(argc, argv, k));
+        else if (arg == "-quick") o.quick = true;
+        else if (arg == "-resume") o.resume = true;
+        else if (arg == "-help" || arg == "--help")
+        {
+            std::cout << usage << std::endl;
+            std::exit(0);
+        }
+        else throw InputError("command line", arg, "unknown option or missing value; " + usage);
+    }
+    return o;
+}
+
+
+ThreePointBendingSettings ThreePointBendingSettings::read
+(
+    const std::string& caseDir,
+    const ThreePointBendingOptions& options
+)
+{
+    ThreePointBendingSettings s;
+    const Dictionary props = Dictionary::readFile(caseDir + "/constant/bendingProperties");
+    props.checkKeys({"beam", "supports", "platen", "packing", "targetStrength"});
+
+    const Dictionary& beam = props.subDict("beam");
+    beam.checkKeys({"length", "width", "thickness"});
+    s.length = positiveEntry(beam, "length");
+    s.width = positiveEntry(beam, "width");
+    s.thickness = positiveEntry(beam, "thickness");     // validated even when overridden
+    if (options.thickness > 0.0)
+    {
+        s.thickness = options.thickness;
+    }
+
+    const Dictionary& supports = props.subDict("supports");
+    supports.checkKeys({"span", "diameter"});
+    s.span = positiveEntry(supports, "span");
+    s.supportDiameter = positiveEntry(supports, "diameter");
+    if (s.span > s.length)
+    {
+        supports.fail("span", number(s.span) + " m is not allowed: the supports must lie under the beam, "
+                      "whose beam.length is " + number(s.length) + " m");
+    }
+
+    const Dictionary& platen = props.subDict("platen");
+    platen.checkKeys({"diameter", "speed", "rampTime", "initialGap"});
+    s.platenDiameter = positiveEntry(platen, "diameter");
+    s.platenSpeed = positiveEntry(platen, "speed");
+    if (options.platenSpeed > 0.0)
+    {
+        s.platenSpeed = options.platenSpeed;
+    }
+    s.platenRampTime = platen.getScalarOrDefault("rampTime", 0.0);
+    if (s.platenRampTime < 0.0)
+    {
+        platen.fail("rampTime", "must not be negative");
+    }
+    s.initialGap = platen.getScalarOrDefault("initialGap", 0.0);
+    if (s.initialGap < 0.0)
+    {
+        platen.fail("initialGap", "must not be negative");
+    }
+
+    const Dictionary& packing = props.subDict("packing");
+    packing.checkKeys({"particleDiameter", "quickParticleDiameter", "radiusSpread", "solidFraction", "seed"});
+    const double standard = positiveEntry(packing, "particleDiameter");
+    const double quick = positiveEntry(packing, "quickParticleDiameter");
+    s.particleDiameter = options.quick ? quick : standard;
+    if (s.particleDiameter > s.thickness)
+    {
+        packing.fail(options.quick ? "quickParticleDiameter" : "particleDiameter",
+                     number(s.particleDiameter) + " m does not fit in a beam " + number(s.thickness) + " m thick");
+    }
+    s.radiusSpread = packing.getScalarOrDefault("radiusSpread", 0.0);
+    if (s.radiusSpread < 0.0 || s.radiusSpread >= 0.9)
+    {
+        packing.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
+    }
+    s.solidFraction = packing.getScalarOrDefault("solidFraction", 0.6);
+    if (s.solidFraction <= 0.0 || s.solidFraction >= 0.74)
+    {
+        packing.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+    }
+    s.seed = static_cast<unsigned>(packing.getLabelOrDefault("seed", 1));
+
+    const Dictionary& target = props.subDict("targetStrength");
+    target.checkKeys({"coefficient", "exponent"});
+    s.targetCoefficient = positiveEntry(target, "coefficient");
+    s.targetExponent = target.getScalar("exponent");
+
+    const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
+    control.checkKeys
+    ({
+        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "sampleInterval", "writeInterval", "checkpointInterval"
+    });
+    s.loading.readControl(control);
+    s.loading.speed = s.platenSpeed;
+    s.loading.initialGap = s.initialGap;
+    s.loading.fixedSteps = options.steps;
+    return s;
+}
+
+
+double ThreePointBendingSettings::flexuralStrength(double force) const
+{
+    return 3.0 * force * span / (2.0 * width * thickness * thickness);
+}
+
+
+double ThreePointBendingSettings::platenTravel(double t, double rampTime) const
+{
+    return t < rampTime ? 0.5 * platenSpeed * t * t / rampTime : platenSpeed * (t - 0.5 * rampTime);
+}
+
+
+double ThreePointBendingSettings::targetStrength() const
+{
+    return targetCoefficient * std::pow(length * width * thickness, targetExponent);
+}
+
+
+ThreePointBendingScene::ThreePointBendingScene(MPI_Comm comm, const ThreePointBendingOptions& options)
+:
+    comm_(comm),
+    options_(options),
+    icePropertiesFile_(options.quick ? "constant/iceProperties.quick" : "constant/iceProperties")
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &ranks_);
+    ice_ = IceProperties::read(path(icePropertiesFile_));
+    settings_ = ThreePointBendingSettings::read(options_.caseDir, options_);
+}
+
+
+ThreePointBendingScene::~ThreePointBendingScene() = default;
+
+
+std::string ThreePointBendingScene::path(const std::string& relative) const
+{
+    return options_.caseDir + "/" + relative;
+}
+
+
+void ThreePointBendingScene::log(const std::string& line) const
+{
+    if (rank_ == 0)
+    {
+        std::cout << line << std::endl;
+    }
+}
+
+
+long ThreePointBendingScene::rampSteps() const
+{
+    return std::max(1L, std::lround(settings_.platenRampTime / body_.dt));
+}
+
+
+void ThreePointBendingScene::buildParticles()
+{
+    RandomPackingSpec spec;
+    spec.lo = Vec3::Zero();
+    spec.hi = Vec3(settings_.length, settings_.width, settings_.thickness);
+    spec.particleCount = particleCountForDiameter
+    (
+        spec.lo, spec.hi, settings_.particleDiameter, settings_.radiusSpread, settings_.solidFraction
+    );
+    spec.radiusSpread = settings_.radiusSpread;
+    spec.targetSolidFraction = settings_.solidFraction;
+    spec.seed = settings_.seed;
+    body_ = buildBondedBody(spec, ice_, path(icePropertiesFile_), {}, [this](const std::string& l) { log(l); });
+
+    const double halfSlab = settings_.particleDiameter;
+    const double midHeight = 0.5 * settings_.thickness;
+    gaugeOfTag_.assign(body_.particles.size(), Gauge::none);
+    double zMid = 0.0, zSupports = 0.0;
+    long nMid = 0, nSupports = 0;
+    for (std::size_t k = 0; k < body_.particles.size(); ++k)
+    {
+        const Vec3& x = body_.particles[k].position;
+        const bool overSupport = std::abs(x.x() - settings_.supportX(0)) < halfSlab
+            || std::abs(x.x() - settings_.supportX(1)) < halfSlab;
+        if (std::abs(x.x() - 0.5 * settings_.length) < halfSlab && x.z() < midHeight)
+        {
+            gaugeOfTag_[k] = Gauge::midspan;
+            zMid += x.z();
+            ++nMid;
+        }
+        else if (overSupport && x.z() > midHeight)
+        {
+            gaugeOfTag_[k] = Gauge::supports;
+            zSupports += x.z();
+            ++nSupports;
+        }
+    }
+    if (nMid == 0 || nSupports == 0)
+    {
+        throw InputError(path("constant/bendingProperties"), "packing.particleDiameter",
+            "the beam is too coarse to measure its deflection (no particles at mid-span or over a support)");
+    }
+    midspanHeight0_ = zMid / nMid;
+    supportsHeight0_ = zSupports / nSupports;
+}
+
+
+void ThreePointBendingScene::writeLiggghtsInputs() const
+{
+    if (rank_ != 0)
+    {
+        return;
+    }
+    const ThreePointBendingSettings& s = settings_;
+    // Room for the beam's halves to swing down and for pieces to fly (the
+    // far field stops them at 0.3 m, stopEjecta).
+    const double margin = 0.5;
+    writeLiggghtsData
+    (
+        path("DEM/packing.data"),
+        "three-point bending beam packing written by threePointBendingDEM",
+        body_.particles,
+        ice_.material.density,
+        Vec3(-margin, -margin, -s.supportDiameter - s.loading.maxTravel - margin),
+        Vec3(s.length + margin, s.width + margin, s.thickness + s.initialGap + s.platenDiameter + margin),
+        2,
+        [](const ParticleSpec& p) { return p.fixed ? fixedType : mobileType; }
+    );
+    const double overhang = 0.02;   // the cylinders reach past the beam's sides
+    const Vec3 across(0.0, 1.0, 0.0);
+    const double platenRadius = 0.5 * s.platenDiameter;
+    writeCylinderStl
+    (
+        path("DEM/platen.stl"),
+        Vec3(0.5 * s.length, -overhang, touchingAxisHeight(body_.particles, 0.5 * s.length, platenRadius, 1) + s.initialGap),
+        across, platenRadius, s.width + 2.0 * overhang, 48, "platen"
+    );
+    const double supportRadius = 0.5 * s.supportDiameter;
+    for (int side = 0; side < 2; ++side)
+    {
+        const double x = s.supportX(side);
+        writeCylinderStl
+        (
+            path(side == 0 ? "DEM/supportA.stl" : "DEM/supportB.stl"),
+            Vec3(x, -overhang, touchingAxisHeight(body_.particles, x, supportRadius, -1)),
+            across, supportRadius, s.width + 2.0 * overhang, 48, side == 0 ? "supportA" : "supportB"
+        );
+    }
+}
+
+
+void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
+{
+    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
+    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    LiggghtsInstance& lmp = *lmp_;
+
+    const double skin = 0.2 * body_.maxRadius();
+    const std::string readParticles = resume
+        ? "read_restart " + loading_->restartFile()
+        : "read_data " + path("DEM/packing.data");
+    ScriptVariables variables
+    {
+        {"readParticles", "\"" + readParticles + "\""},
+        {"platenStl", path("DEM/platen.stl")},
+        {"supportAStl", path("DEM/supportA.stl")},
+        {"supportBStl", path("DEM/supportB.stl")},
+        {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, body_.maxRadius(), skin))},
+        {"neighbourSkin", exactNumber(skin)},
+        {"dt", exactNumber(body_.dt)},
+        {"platenSpeed", exactNumber(settings_.platenSpeed)},
+        {"platenRampSteps", std::to_string(rampSteps())},
+        {"forceSampleSteps", std::to_string(forceSampleSteps())}
+    };
+    const ScriptVariables contactVars = contactVariables(body_.contact);
+    variables.insert(variables.end(), contactVars.begin(), contactVars.end());
+    defineScriptVariables(lmp, variables, path("DEM/variables.generated"), application);
+
+    const std::string script = path("DEM/in.threePointBending");
+    if (!std::filesystem::exists(script))
+    {
+        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
+    }
+    lmp.runScript(script);
+    bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
+}
+
+
+long ThreePointBendingScene::forceSampleSteps() const
+{
+    // The steps between two of PlatenLoading's force samples.
+    const PlatenLoadingControl& c = settings_.loading;
+    return std::max(1L, std::lround(c.sampleInterval / (c.speed * body_.dt)));
+}
+
+
+double ThreePointBendingScene::platenForce() const
+{
+    // Averaged over the steps since the last sample (fix forceAverage): the
+    // platen's contacts chatter at kHz, which single steps would alias. The
+    // beam pushes the descending platen up (+z).
+    return lmp_->fix("forceAverage").compute_vector(0);
+}
+
+
+double ThreePointBendingScene::supportReaction() const
+{
+    LAMMPS_NS::Fix& average = lmp_->fix("forceAverage");
+    return -(average.compute_vector(1) + average.compute_vector(2));
+}
+
+
+double ThreePointBendingScene::midspanDeflection() const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double local[4] = {0.0, 0.0, 0.0, 0.0};     // sum z and count: mid-span, supports
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const Gauge g = gaugeOfTag_[atom.tag[i] - 1];
+        if (g != Gauge::none)
+        {
+            const int k = g == Gauge::midspan ? 0 : 2;
+            local[k] += atom.x[i][2];
+            local[k + 1] += 1.0;
+        }
+    }
+    double total[4];
+    MPI_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, comm_);
+    return (midspanHeight0_ - total[0] / total[1]) - (supportsHeight0_ - total[2] / total[3]);
+}
+
+
+long ThreePointBendingScene::stopEjecta()
+{
+    const double clearance = 0.3;
+    const ThreePointBendingSettings& s = settings_;
+    return stopParticlesOutside
+    (
+        *lmp_,
+        Vec3(-clearance, -clearance, -s.supportDiameter - s.loading.maxTravel - clearance),
+        Vec3(s.length + clearance, s.width + clearance, s.thickness + clearance),
+        fixedType
+    );
+}
+
+
+void ThreePointBendingScene::run()
+{
+    const auto wallStart = std::chrono::steady_clock::now();
+    std::ostringstream intro;
+    intro << application << ": three-point bending, beam " << settings_.length << " x " << settings_.width
+          << " x " << settings_.thickness << " m, span " << settings_.span << " m, particles of "
+          << settings_.particleDiameter << " m (" << icePropertiesFile_ << "), case " << options_.caseDir
+          << ", " << ranks_ << " rank(s)";
+    log(intro.str());
+    buildParticles();
+    loading_ = std::make_unique<PlatenLoading>
+    (
+        comm_, options_.caseDir, application, settings_.loading, body_.dt,
+        static_cast<long>(body_.particles.size()), fixedType,
+        std::vector<std::string>{"midspanDeflection", "supportReaction"}
+    );
+    std::unique_ptr<Checkpoint> resume;
+    if (options_.resume)
+    {
+        resume = std::make_unique<Checkpoint>(loading_->readCheckpoint());
+    }
+    writeLiggghtsInputs();
+    MPI_Barrier(comm_);
+    startLiggghts(resume.get());
+
+    PlatenLoading::Hooks hooks;
+    hooks.force = [this] { return platenForce(); };
+    hooks.extras = [this] { return std::vector<double>{midspanDeflection(), supportReaction()}; };
+    hooks.stopEjecta = [this] { return stopEjecta(); };
+    loading_->run(*lmp_, *bonds_, hooks);
+
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    writeSummary(wall);
+    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+        + std::to_string(loading_->breakage().size()) + " bonds broken");
+}
+
+
+void ThreePointBendingScene::writeSummary(double wallSeconds) const
+{
+    const CsvWriter& curve = loading_->curve();
+    const BreakageRecord& breaks = loading_->breakage();
+    const LoadingState& state = loading_->state();
+    if (rank_ != 0)
+    {
+        return;
+    }
+    const ThreePointBendingSettings& s = settings_;
+    // The curve's travel column is speed x time; the platen lags it by half
+    // the ramp once at speed.
+    const double rampTime = rampSteps() * body_.dt;
+    std::vector<double> travel, force, deflection;
+    for (std::size_t k = 0; k < curve.nRows(); ++k)
+    {
+        const std::vector<double>& row = curve.row(k);
+        travel.push_back(s.platenTravel(row[0], rampTime));
+        force.push_back(row[PlatenLoading::forceColumn]);
+        deflection.push_back(row[curve.columns().size() - 2]);
+    }
+    const std::size_t peakIndex = std::max_element(force.begin(), force.end()) - force.begin();
+    const double peak = force[peakIndex];
+    const double onset = contactOnset(travel, force, 0.01 * peak);
+    std::vector<double> displacement;
+    for (double t : travel) displacement.push_back(t - onset);
+    // Failure load: the highest load, as in the laboratory test. The first
+    // major load drop (a tenth of the peak) marks the first crack; the
+    // elastic slopes are fitted on the rise to it.
+    const FirstPeak first = firstPeak(displacement, force, 0.1);
+    const auto riseEnd = static_cast<std::ptrdiff_t>(first.index) + 1;
+    const std::vector<double> riseForce(force.begin(), force.begin() + riseEnd);
+    const ForceCurveResult platenFit = analyseForceCurve
+    (
+        std::vector<double>(displacement.begin(), displacement.begin() + riseEnd), riseForce
+    );
+    const ForceCurveResult deflectionFit = analyseForceCurve
+    (
+        std::vector<double>(deflection.begin(), deflection.begin() + riseEnd), riseForce
+    );
+    const double beamStiffness = 48.0 * s.secondMomentOfArea() / std::pow(s.span, 3);   // per unit E
+
+    const double strength = s.flexuralStrength(peak);
+    const double target = s.targetStrength();
+    int centreBreaks = 0;
+    for (const BreakEvent& e : breaks.events())
+    {
+        centreBreaks += std::abs(e.position.x() - 0.5 * s.length) < 0.1 * s.span;
+    }
+
+    JsonObject modes;
+    modes.add("tension", long(breaks.count(BreakMode::tension)))
+         .add("shear", long(breaks.count(BreakMode::shear)))
+         .add("twist", long(breaks.count(BreakMode::twist)))
+         .add("bending", long(breaks.count(BreakMode::bending)));
+    JsonObject j;
+    j.add("case", "threePointBending")
+     .add("resolution", options_.quick ? "quick" : "standard")
+     .add("thickness_m", s.thickness)
+     .add("length_m", s.length)
+     .add("width_m", s.width)
+     .add("span_m", s.span)
+     .add("particle_diameter_m", s.particleDiameter)
+     .add("failure_force_N", peak)
+     .add("travel_at_failure_m", displacement[peakIndex])
+     .add("peak_force_N", peak)
+     .add("first_peak_force_N", first.force)
+     .add("travel_at_first_peak_m", first.travel)
+     .add("flexural_strength_Pa", strength)
+     .add("target_strength_Pa", target)
+     .add("strength_error", strength / target - 1.0)
+     .add("elastic_slope_platen_N_per_m", platenFit.elasticSlope)
+     .add("elastic_slope_platen_fit_R2", platenFit.slopeFitR2)
+     .add("elastic_slope_deflection_N_per_m", deflectionFit.elasticSlope)
+     .add("elastic_slope_deflection_fit_R2", deflectionFit.slopeFitR2)
+     .add("effective_modulus_Pa", deflectionFit.elasticSlope / beamStiffness)
+     .add("effective_modulus_from_platen_Pa", platenFit.elasticSlope / beamStiffness)
+     .add("deflection_at_failure_m", deflection[peakIndex])
+     .add("support_reaction_at_failure_N", curve.row(peakIndex).back())
+     .add("contact_onset_travel_m", onset)
+     .add("kinetic_to_elastic_energy_at_peak", state.kineticToElasticAtPeak)
+     .add("broken_bonds", long(breaks.size()))
+     .add("broken_bonds_by_mode", modes)
+     .add("share_of_breaks_within_10pct_of_span_from_centre",
+          breaks.empty() ? 0.0 : double(centreBreaks) / breaks.size())
+     .add("platen_speed_m_per_s", s.platenSpeed)
+     .add("platen_ramp_time_s", rampTime)
+     .add("particles", long(body_.particles.size()))
+     .add("bonds", long(body_.bondStats.totalBonds))
+     .add("bonds_per_particle", body_.bondStats.meanBondsPerParticle)
+     .add("ejected_particles_stopped", long(state.frozenEjecta))
+     .add("steps", state.steps)
+     .add("dt", body_.dt)
+     .add("ranks", long(ranks_))
+     .add("wall_s", wallSeconds)
+     .add("loop_wall_s", loading_->loopSeconds())
+     .add("particle_steps_per_s", loading_->loopSteps() * double(body_.particles.size()) / loading_->loopSeconds());
+    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+}
+
+} // namespace iceDEM

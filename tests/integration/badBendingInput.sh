@@ -1,0 +1,36 @@
+#!/bin/bash
+# Each broken constant/bendingProperties must stop threePointBendingDEM with a
+# non-zero exit (not a crash) and a message naming the entry.
+# usage: badBendingInput.sh CASE WORKDIR APP
+set -uo pipefail
+case_dir="$1"; work="$2"; app="$3"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+passed=0; failed=0
+
+check() {   # name, sed expression on constant/bendingProperties, expected text, extra options
+    local name="$1" edit="$2" expected="$3"; shift 3
+    rm -rf "$work/$name"; mkdir -p "$work/$name"
+    cp -r "$case_dir/constant" "$case_dir/system" "$case_dir/DEM" "$work/$name/"
+    sed -i -e "$edit" "$work/$name/constant/bendingProperties"
+    out=$(mpirun -np 1 "$app" -case "$work/$name" "$@" 2>&1); rc=$?
+    if [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "$expected" <<<"$out"; then
+        echo "ok   $name: $(grep -F -- "$expected" <<<"$out" | head -1 | sed 's/^ *//')"
+        passed=$((passed + 1))
+    else
+        echo "FAIL $name (exit $rc), expected '$expected' in:"; echo "$out" | tail -5
+        failed=$((failed + 1))
+    fi
+}
+
+check missingThickness  '/thickness /d'                       "beam.thickness"
+check zeroThickness     's/thickness [^;]*;/thickness 0;/'        "beam.thickness"
+check negativeThickness 's/thickness [^;]*;/thickness -0.1;/'     "beam.thickness"
+check spanBeyondBeam    's/span [^;]*;/span 3.2;/'                "supports.span"
+check missingSpan       '/span /d'                             "supports.span"
+check badDiameter       's/particleDiameter [^;]*;/particleDiameter abc;/' "packing.particleDiameter"
+check particleTooBig    's/ particleDiameter [^;]*;/ particleDiameter 0.12;/' "packing.particleDiameter"
+check unknownEntry      's/span /spam 1; span /'               "supports.spam"
+check badOption         ''                                     "-thickness" -thickness -0.1
+
+echo "$passed passed, $failed failed"
+[ $failed -eq 0 ]
