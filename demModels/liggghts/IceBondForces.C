@@ -79,6 +79,7 @@ IceBondForces::IceBondForces
         BondModel(props.family(BondFamily::ice), props.damping),
         BondModel(props.family(BondFamily::freeze), props.damping)
     },
+    unbreakable_{props.family(BondFamily::ice).unbreakable, props.family(BondFamily::freeze).unbreakable},
     damping_(props.damping),
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
@@ -412,6 +413,15 @@ std::vector<BondState> IceBondForces::localBondStates() const
         return std::tie(x.tagA, x.tagB) < std::tie(y.tagA, y.tagB);
     });
     return states;
+}
+
+
+void IceBondForces::suspendBreakage(bool suspended)
+{
+    for (int f = 0; f < nBondFamilies; ++f)
+    {
+        models_[f].setUnbreakable(suspended || unbreakable_[f]);
+    }
 }
 
 

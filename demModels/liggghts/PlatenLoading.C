@@ -74,6 +74,11 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("rampTravel", "expected 0 <= rampTravel <= maxTravel");
     }
+    blowUpFactor = control.getScalarOrDefault("blowUpFactor", 2.0);
+    if (!(blowUpFactor >= 1.0))
+    {
+        control.fail("blowUpFactor", "expected a number >= 1 (the kinetic energy allowed per unit of energy put in)");
+    }
     sampleInterval = positive("sampleInterval", 2e-4);
     writeInterval = positive("writeInterval", 0.01);
     checkpointInterval = positive("checkpointInterval", 0.02);
@@ -365,13 +370,14 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
     MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
-    if (anyFailed == 0 && kinetic > 2.0 * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
+    if (anyFailed == 0 && kinetic > control_.blowUpFactor * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
     {
         std::ostringstream msg;
-        msg << "kinetic energy " << kinetic << " J exceeds twice the work done by the platen ("
+        msg << "kinetic energy " << kinetic << " J exceeds " << control_.blowUpFactor << " times the work done by the platen ("
             << state_.platenWork << " J) and the kinetic energy at the start (" << state_.kineticAtStart
             << " J) at time " << lmp.time() << " s, step " << lmp.step()
-            << ": the run is unstable (lower timeStep.factor)";
+            << ": the run is unstable (lower timeStep.factor; a body that stores energy of its own, e.g. floating"
+            << " ice that falls when it breaks, may need a larger blowUpFactor in system/controlDict)";
         failure = msg.str();
         anyFailed = 1;
     }
