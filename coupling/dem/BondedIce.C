@@ -1,6 +1,7 @@
 #include "BondedIce.H"
 
 #include "ContactParameters.H"
+#include "FpeTrapsOff.H"
 #include "IceBondForces.H"
 #include "InputError.H"
 #include "LiggghtsInstance.H"
@@ -17,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -37,6 +39,13 @@ std::string everyTypePair(int types, double value)
         values += " " + iceDEM::exactNumber(value);
     }
     return values;
+}
+
+std::string tenDigits(double value)
+{
+    std::ostringstream s;
+    s << std::setprecision(10) << value;
+    return s.str();
 }
 
 } // namespace
@@ -78,9 +87,8 @@ BondedIce::BondedIce
         if (std::abs(density/ice_.material.density - 1.0) > 1e-6)
         {
             throw iceDEM::InputError(demScriptPath_, "density",
-                "atom " + std::to_string(p.tag) + " has " + iceDEM::exactNumber(density)
-                + " kg/m3; constant/iceProperties material.density is "
-                + iceDEM::exactNumber(ice_.material.density));
+                "atom " + std::to_string(p.tag) + " has " + tenDigits(density)
+                + " kg/m3; constant/iceProperties material.density is " + tenDigits(ice_.material.density));
         }
         iceDEM::ParticleSpec spec;
         spec.position = iceDEM::Vec3(p.position[0], p.position[1], p.position[2]);
@@ -105,6 +113,7 @@ BondedIce::BondedIce
     bonds_ = std::make_unique<iceDEM::IceBondForces>(lmp_, ice_, contactStiffness);
     lmp_.command(std::string("fix ") + bondFixId + " all external pf/callback 1 1");
     bonds_->attach(bondFixId);
+    const FpeTrapsOff untrapped;
     lmp_.command("run 0");   // LIGGGHTS' first set-up resets property/atom values
     bonds_->createBonds(specs, pairs);
     lmp_.command("run 0");
