@@ -1,5 +1,6 @@
 #include "DemCoupling.H"
 
+#include "FpeTrapsOff.H"
 #include "LiggghtsInstance.H"
 
 #include "lammps.h"
@@ -119,6 +120,7 @@ void DemCoupling::setForces
 void DemCoupling::advance(long steps)
 {
     // The first run sets LIGGGHTS up (neighbour lists, fixes); later ones continue it.
+    const FpeTrapsOff untrapped;
     lmp_.command("run " + std::to_string(steps) + (started_ ? " pre no post no" : " post no"));
     started_ = true;
 }

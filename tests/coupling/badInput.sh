@@ -1,8 +1,10 @@
 #!/bin/bash
 # iceFoam refuses bad couplingProperties with a clear message and a non-zero exit.
-# Usage: badInput.sh CASE_SOURCE WORK_DIR ICEFOAM
+# Usage: badInput.sh CASE_SOURCE WORK_DIR ICEFOAM [bondedIce]
+#   bondedIce: the case has constant/iceProperties (cases/floatingBlock/cfd);
+#   checks the bonded ice model's inputs instead.
 set -uo pipefail
-src=$1 work=$2 app=$3
+src=$1 work=$2 app=$3 checks=${4:-coupling}
 failures=0
 
 # expectRefusal NAME EXPECTED_MESSAGE FILE:ENTRY=VALUE...
@@ -31,6 +33,15 @@ expectRefusal() {
 }
 
 props=constant/couplingProperties
+if [ "$checks" = bondedIce ]; then
+    ice=constant/iceProperties
+    expectRefusal iceDensityNotScript "constant/iceProperties material.density is 900" \
+        "$ice:material/density=900"
+    expectRefusal unknownDampingModel "entry 'damping.model'" "$ice:damping/model=sticky"
+    expectRefusal negativeModulus "youngsModulus" "$ice:bondFamilies/ice/youngsModulus=-1"
+    expectRefusal demStepTooLong "is above the bonded pack's stability limit" "$props:demVariables/demTimeStep=1e-3"
+    exit $failures
+fi
 expectRefusal unknownDragModel "Unknown dragModel type Stokes" "$props:dragModel=Stokes"
 expectRefusal unknownFluidFraction "Unknown fluidFractionModel type voronoi" "$props:fluidFractionModel=voronoi"
 expectRefusal unknownMomentumCoupling "Unknown momentumCoupling type implicit" "$props:momentumCoupling=implicit"

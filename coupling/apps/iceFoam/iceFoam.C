@@ -33,11 +33,14 @@ Description
     Stability limits: momentumCouplingModel::slipGrowthFactor.
 
     Input: constant/couplingProperties, constant/transportProperties (rho, nu),
-    constant/g, 0/U, 0/p_rgh, the DEM script it names.
+    constant/g, 0/U, 0/p_rgh, the DEM script it names; with
+    constant/iceProperties the particles are bonded ice (BondedIce: bonds,
+    contacts and hysteretic damping from demModels).
     Output: the usual time directories (U, p_rgh, p, alpha, Us),
     postProcessing/coupling.csv (forces and fluid-fraction range per coupling
-    step), postProcessing/particles.csv (trajectories) and particle VTK files
-    at write times (postProcessing/particles/).
+    step), postProcessing/particles.csv (trajectories), particle VTK files
+    at write times (postProcessing/particles/) and, for bonded ice,
+    postProcessing/bonds.csv (intact and broken bonds per coupling step).
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -47,10 +50,12 @@ Description
 #include "couplingInterval.H"
 #include "LiggghtsInstance.H"
 #include "DemCoupling.H"
+#include "BondedIce.H"
 
 #include <mpi.h>
 
 #include <chrono>
+#include <memory>
 
 using namespace Foam::iceCoupling;
 
@@ -83,6 +88,21 @@ struct MpiForSerialRun
 };
 
 #include "particleOutput.H"
+
+//- Runs a DEM-side action; its input and run errors (iceDEM) stop the run
+//  with their message.
+template<class Action>
+void demModelsAction(const Action& action)
+{
+    try
+    {
+        action();
+    }
+    catch (const std::exception& e)
+    {
+        FatalErrorInFunction << e.what() << exit(FatalError);
+    }
+}
 
 } // namespace
 
@@ -126,6 +146,16 @@ int main(int argc, char *argv[])
     }
     lmp.runScript(demScript);
     ::iceCoupling::DemCoupling dem(lmp, couplingProperties.getOrDefault<word>("demFixExternal", "cfdCoupling"));
+    std::unique_ptr<::iceCoupling::BondedIce> bondedIce;
+    const fileName iceProperties(runTime.globalPath()/"constant"/"iceProperties");
+    const fileName bondHistory(runTime.globalPath()/"postProcessing"/"bonds.csv");
+    if (isFile(iceProperties))
+    {
+        demModelsAction([&]()
+        {
+            bondedIce.reset(new ::iceCoupling::BondedIce(lmp, iceProperties, demScript, dem.gatherAll()));
+        });
+    }
 
     if (runTime.controlDict().getOrDefault("adjustTimeStep", false))
     {
@@ -180,10 +210,26 @@ int main(int argc, char *argv[])
         particles = dem.gatherAll();
         coupling.updateFluidFraction(particles);
         coupling.updateExchange(particles, U);
+        if (bondedIce)
+        {
+            demModelsAction([&]() { bondedIce->collectBreaks(lmp.time()); });
+        }
         if (runTime.writeTime())
         {
             output.particlesVtk(runTime, particles);
+            if (bondedIce)
+            {
+                bondedIce->writeHistory(bondHistory);
+                Info<< "Bonds: " << bondedIce->intactBonds() << " intact, "
+                    << bondedIce->brokenBonds() << " broken" << nl << endl;
+            }
         }
+    }
+    if (bondedIce)
+    {
+        bondedIce->writeHistory(bondHistory);
+        Info<< "Bonds at the end: " << bondedIce->intactBonds() << " intact of "
+            << bondedIce->initialBonds().totalBonds << ", " << bondedIce->brokenBonds() << " broken" << endl;
     }
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
