@@ -406,7 +406,14 @@ void RidgeScene::assemble()
     // the confinement of the contact forces they settled with.
     const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
     std::vector<ParticleSpec> now = layout.particles;
-    for (std::size_t k = 0; k < now.size(); ++k) now[k].position = positions[k];
+    for (std::size_t k = 0; k < now.size(); ++k)
+    {
+        // Off the side walls: an overlap that the soft assembly contacts
+        // allowed would push with thousands of newtons at the ice stiffness.
+        now[k].position = positions[k];
+        double& y = now[k].position.y();
+        y = std::clamp(y, now[k].radius, settings_.layer.width - now[k].radius);
+    }
     std::vector<BondPair> iceBonds;
     for (const BondPair& b : BondBuilder(ice_).build(now))
     {
