@@ -11,7 +11,7 @@
 3. every freeze-bond joins particles of different blocks (the layer counts as
    one more block), every ice bond particles of one block;
 4. the same assembled ridge loaded on 1 and on 2 ranks: the platen force
-   agrees to 1e-8 (relative) until the broken-bond count first changes (the
+   agrees to 1e-4 (relative; frictional rubble contacts, see below) until the broken-bond count first changes (the
    2-rank run stops after 6 mm; after fracture the comparison is statistical,
    as levelIceBeamSmall_oneVsTwoRanks does it).
 
@@ -105,8 +105,12 @@ for k in range(min(len(a["force"]), len(b["force"]))):
     if abs(a["force"][k]) > 1e-3 * f_thin:
         worst = max(worst, abs(a["force"][k] - b["force"][k]) / abs(a["force"][k]))
         compared += 1
-check(compared >= 5 and worst <= 1e-8,
-      f"1 vs 2 ranks: {compared} loaded samples before a bond breaks, largest force difference {worst:.1e} (<= 1e-8)")
+# Not 1e-8 as for the level-ice beam: the keel is loose blocks in frictional
+# contact, whose contact sums LIGGGHTS adds in a rank-dependent order, and the
+# 2,000 settling steps before the platen moves amplify that round-off
+# (measured 3e-5); a real difference between the ranks is of order 1.
+check(compared >= 5 and worst <= 1e-4,
+      f"1 vs 2 ranks: {compared} loaded samples before a bond breaks, largest force difference {worst:.1e} (<= 1e-4)")
 
 if failures:
     sys.exit("ridgeFlexureSmall: %d check(s) failed" % len(failures))
