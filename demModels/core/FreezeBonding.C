@@ -1,5 +1,7 @@
 #include "FreezeBonding.H"
 
+#include "InputError.H"
+
 #include "CellGrid.H"
 
 #include <algorithm>
@@ -129,6 +131,15 @@ FreezeBondingStatistics freezeBondingStatistics
     s.sdShear = std::sqrt(std::max(0.0, sumS2/n - s.meanShear*s.meanShear));
     s.meanConfinement = sumP/n;
     return s;
+}
+
+void requireFreezeBondStrengthsPerBond(const IceProperties& ice, const std::string& iceFile)
+{
+    if (ice.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
+    {
+        throw InputError(iceFile, "bondFamilies.freeze.strengthModel",
+            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
+    }
 }
 
 } // namespace iceDEM

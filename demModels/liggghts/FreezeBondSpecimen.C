@@ -5,6 +5,7 @@
 #include "Dictionary.H"
 #include "IceBlocks.H"
 #include "IceBondForces.H"
+#include "FreezeBonding.H"
 #include "InputError.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
@@ -53,11 +54,7 @@ FreezeBondSpecimen::FreezeBondSpecimen
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &ranks_);
     ice_ = IceProperties::read(path("constant/iceProperties"));
-    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
-    {
-        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
-            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
-    }
+    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
     strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
     if (submersionTime > 0.0)
     {

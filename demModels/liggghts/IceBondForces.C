@@ -79,7 +79,7 @@ IceBondForces::IceBondForces
         BondModel(props.family(BondFamily::ice), props.damping),
         BondModel(props.family(BondFamily::freeze), props.damping)
     },
-    unbreakable_{props.family(BondFamily::ice).unbreakable, props.family(BondFamily::freeze).unbreakable},
+    ice_(props),
     damping_(props.damping),
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
@@ -114,22 +114,7 @@ void IceBondForces::createBonds
     const std::vector<BondPair>& pairs
 )
 {
-    auto spec = [&](int index)
-    {
-        ParticleState p;
-        p.position = particles[index].position;
-        p.radius = particles[index].radius;
-        return p;
-    };
-    std::vector<BondState> states;
-    states.reserve(pairs.size());
-    for (const BondPair& pair : pairs)
-    {
-        BondState state =
-            models_[static_cast<int>(pair.family)].create(pair.i + 1, pair.j + 1, spec(pair.i), spec(pair.j));
-        state.family = pair.family;
-        states.push_back(state);
-    }
+    const std::vector<BondState> states = newBondStates(pairs, particles, ice_);
     syncTable();
     for (const BondState& state : states)
     {
@@ -420,7 +405,7 @@ void IceBondForces::suspendBreakage(bool suspended)
 {
     for (int f = 0; f < nBondFamilies; ++f)
     {
-        models_[f].setUnbreakable(suspended || unbreakable_[f]);
+        models_[f].setUnbreakable(suspended || ice_.family(static_cast<BondFamily>(f)).unbreakable);
     }
 }
 

@@ -184,11 +184,7 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings)
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &ranks_);
     ice_ = IceProperties::read(path("constant/iceProperties"));
-    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
-    {
-        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
-            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
-    }
+    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
     strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
     if (strengthModel_.areaCorrectionKind() != FreezeBondStrengthModel::AreaCorrectionKind::given)
     {
@@ -302,14 +298,10 @@ void RidgeScene::startLiggghts
         {"dt", exactNumber(dt_)},
         {"gravity", exactNumber(water_.gravity.norm())},
         {"boxWidth", exactNumber(settings_.layer.width)},
-        {"knMatrix", "\"" + typePairMatrix(contact_.normalStiffness, contact_.normalStiffness) + "\""},
-        {"ktMatrix", "\"" + typePairMatrix(contact_.tangentialStiffness, contact_.tangentialStiffness) + "\""},
-        {"gnMatrix", "\"" + typePairMatrix(contact_.normalDamping, contact_.normalDamping) + "\""},
-        {"gtMatrix", "\"" + typePairMatrix(contact_.tangentialDamping, contact_.tangentialDamping) + "\""},
-        {"muMatrix", "\"" + typePairMatrix(contact_.friction, 0.0) + "\""},
-        {"muRMatrix", "\"" + typePairMatrix(contact_.rollingFriction, 0.0) + "\""},
         {"layerFirstTag", std::to_string(layerFirstTag_)}
     };
+    const ScriptVariables contacts = boxContactVariables(contact_);
+    variables.insert(variables.end(), contacts.begin(), contacts.end());
     defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "ridgeDEM");
     const std::string script = path("DEM/in.ridge");
     if (!std::filesystem::exists(script))

@@ -9,6 +9,7 @@
 #include "Dictionary.H"
 #include "HydrostaticWater.H"
 #include "IceBondForces.H"
+#include "FreezeBonding.H"
 #include "InputError.H"
 #include "JsonObject.H"
 #include "LiggghtsInstance.H"
@@ -149,11 +150,7 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &ranks_);
     ice_ = IceProperties::read(path("constant/iceProperties"));
-    if (ice_.family(BondFamily::freeze).strengthModel != StrengthModel::perBond)
-    {
-        throw InputError(path("constant/iceProperties"), "bondFamilies.freeze.strengthModel",
-            "must be freezeBondProperties: freeze-bond strengths come from constant/freezeBondProperties");
-    }
+    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
     strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
     if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
     {
@@ -270,7 +267,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
     LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
     lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
     const double skin = 0.2*r;
-    const ScriptVariables variables
+    ScriptVariables variables
     {
         {"dataFile", path("DEM/rubble.data")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice, r, skin))},
@@ -278,14 +275,10 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
         {"dt", exactNumber(dt_)},
         {"gravity", exactNumber(water_.gravity.norm())},
         {"boxLength", exactNumber(settings_.boxLength)},
-        {"boxWidth", exactNumber(settings_.boxWidth)},
-        {"knMatrix", "\"" + typePairMatrix(contact.normalStiffness, contact.normalStiffness) + "\""},
-        {"ktMatrix", "\"" + typePairMatrix(contact.tangentialStiffness, contact.tangentialStiffness) + "\""},
-        {"gnMatrix", "\"" + typePairMatrix(contact.normalDamping, contact.normalDamping) + "\""},
-        {"gtMatrix", "\"" + typePairMatrix(contact.tangentialDamping, contact.tangentialDamping) + "\""},
-        {"muMatrix", "\"" + typePairMatrix(contact.friction, 0.0) + "\""},
-        {"muRMatrix", "\"" + typePairMatrix(contact.rollingFriction, 0.0) + "\""}
+        {"boxWidth", exactNumber(settings_.boxWidth)}
     };
+    const ScriptVariables contacts = boxContactVariables(contact);
+    variables.insert(variables.end(), contacts.begin(), contacts.end());
     defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "rubbleDEM");
     const std::string script = path("DEM/in.rubbleBeam");
     if (!std::filesystem::exists(script))

@@ -105,4 +105,18 @@ std::string typePairMatrix(double ice, double wall)
     return m.str();
 }
 
+ScriptVariables boxContactVariables(const ContactParameters& c)
+{
+    auto matrix = [](double ice, double wall) { return "\"" + typePairMatrix(ice, wall) + "\""; };
+    return
+    {
+        {"knMatrix", matrix(c.normalStiffness, c.normalStiffness)},
+        {"ktMatrix", matrix(c.tangentialStiffness, c.tangentialStiffness)},
+        {"gnMatrix", matrix(c.normalDamping, c.normalDamping)},
+        {"gtMatrix", matrix(c.tangentialDamping, c.tangentialDamping)},
+        {"muMatrix", matrix(c.friction, 0.0)},
+        {"muRMatrix", matrix(c.rollingFriction, 0.0)}
+    };
+}
+
 } // namespace iceDEM
