@@ -660,9 +660,10 @@ void RidgeScene::load()
     {
         lmp_->command("variable layerV equal " + speed);
         lmp_->command("variable layerD equal " + travel);
+        // Every component given: a NULL one would be integrated from the forces.
         lmp_->command(settings_.test == RidgeTest::pullUp
-            ? "fix moveLayer layer move variable NULL NULL v_layerD NULL NULL v_layerV"
-            : "fix moveLayer layer move variable v_layerD NULL NULL v_layerV NULL NULL");
+            ? "fix moveLayer layer move variable v_zero v_zero v_layerD v_zero v_zero v_layerV"
+            : "fix moveLayer layer move variable v_layerD v_zero v_zero v_layerV v_zero v_zero");
     }
     // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
     // registered as moving by one, so the motion gets its own.
