@@ -80,7 +80,6 @@ IceBondForces::IceBondForces
         BondModel(props.family(BondFamily::freeze), props.damping)
     },
     ice_(props),
-    damping_(props.damping),
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
 {}
@@ -631,10 +630,10 @@ void IceBondForces::sumLoads(int entry)
             << "): the run has blown up";
         fail(msg.str());
     }
-    else if (damping_.model == DampingModel::hysteretic && damping_.alpha > 0.0)
+    else if (ice_.damping.model == DampingModel::hysteretic && ice_.damping.alpha > 0.0)
     {
-        applyHystereticDamping(force, particles_[entry].velocity, damping_.alpha);
-        applyHystereticDamping(moment, particles_[entry].angularVelocity, damping_.alpha);
+        applyHystereticDamping(force, particles_[entry].velocity, ice_.damping.alpha);
+        applyHystereticDamping(moment, particles_[entry].angularVelocity, ice_.damping.alpha);
     }
     for (int c = 0; c < 3; ++c)
     {

@@ -44,15 +44,6 @@ std::vector<std::string> curveColumns(const std::vector<std::string>& extras)
 
 void PlatenLoadingControl::readControl(const Dictionary& control)
 {
-    auto positive = [&](const std::string& key, double def)
-    {
-        const double v = control.getScalarOrDefault(key, def);
-        if (!(v > 0.0))
-        {
-            control.fail(key, number(v) + " is not allowed; expected a positive number");
-        }
-        return v;
-    };
     maxTravel = control.getScalar("maxTravel");
     if (!(maxTravel > 0.0))
     {
@@ -79,9 +70,9 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("blowUpFactor", "expected a number >= 1 (the kinetic energy allowed per unit of energy put in)");
     }
-    sampleInterval = positive("sampleInterval", 2e-4);
-    writeInterval = positive("writeInterval", 0.01);
-    checkpointInterval = positive("checkpointInterval", 0.02);
+    sampleInterval = control.getPositiveScalarOrDefault("sampleInterval", 2e-4);
+    writeInterval = control.getPositiveScalarOrDefault("writeInterval", 0.01);
+    checkpointInterval = control.getPositiveScalarOrDefault("checkpointInterval", 0.02);
     if (sampleInterval > writeInterval)
     {
         control.fail("sampleInterval", "must not exceed writeInterval");

@@ -35,6 +35,7 @@ namespace
 constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 constexpr int boxTypes = 3;     // 3: the box walls
+constexpr double platenOverhang = 0.05;     // m the platen reaches past each side wall
 
 std::string number(double v)
 {
@@ -522,7 +523,7 @@ std::vector<double> RidgeScene::waterColumns()
     {
         const double bottom = platenBottom_ - settings_.loading.travelAt(lmp_->time() - loading_->state().startTime);
         platenBuoyancy = water.buoyancy(water.submergedPrismVolume(
-            settings_.platenLength * (settings_.layer.width + 0.1), bottom, bottom + settings_.platenHeight));
+            settings_.platenLength * (settings_.layer.width + 2.0 * platenOverhang), bottom, bottom + settings_.platenHeight));
     }
     return {totals.buoyancy.z(), totals.submergedVolume, share, platenBuoyancy};
 }
@@ -597,8 +598,9 @@ void RidgeScene::load()
             writeBoxStl
             (
                 path("DEM/platen.stl"),
-                Vec3(xLoad - 0.5 * settings_.platenLength, -0.05, platenBottom_),
-                Vec3(xLoad + 0.5 * settings_.platenLength, settings_.layer.width + 0.05, platenBottom_ + settings_.platenHeight),
+                Vec3(xLoad - 0.5 * settings_.platenLength, -platenOverhang, platenBottom_),
+                Vec3(xLoad + 0.5 * settings_.platenLength, settings_.layer.width + platenOverhang,
+                     platenBottom_ + settings_.platenHeight),
                 "platen"
             );
         }
@@ -698,7 +700,9 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     const std::size_t rows = curve.nRows();
     double peak = -HUGE_VAL, travelAtPeak = 0.0, shareAtPeak = 0.0;
     const double startForce = rows > 0 ? curve.row(0)[PlatenLoading::forceColumn] : 0.0;
-    const int shareColumn = 8;
+    const std::vector<std::string>& columns = curve.columns();
+    const std::size_t shareColumn =
+        std::find(columns.begin(), columns.end(), "buoyancyShare") - columns.begin();
     for (std::size_t k = 0; k < rows; ++k)
     {
         const std::vector<double>& row = curve.row(k);
