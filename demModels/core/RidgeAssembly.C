@@ -1,5 +1,6 @@
 #include "RidgeAssembly.H"
 
+#include "CellGrid.H"
 #include "HydrostaticWater.H"
 #include "Percentile.H"
 #include "RandomPacking.H"
@@ -124,6 +125,47 @@ double floatingWaterLevel(const std::vector<ParticleSpec>& particles, double den
         bottom = std::min(bottom, p.position.z() - p.radius);
     }
     return bottom + levelDraft(particles, densityRatio);
+}
+
+
+OverlapStatistics overlapStatistics(const std::vector<ParticleSpec>& particles, const std::vector<Vec3>& positions)
+{
+    if (positions.size() != particles.size())
+    {
+        throw std::invalid_argument("overlapStatistics: one position per particle expected");
+    }
+    OverlapStatistics stats;
+    if (particles.empty())
+    {
+        return stats;
+    }
+    Vec3 lo = positions.front(), hi = lo;
+    double maxRadius = 0.0;
+    for (std::size_t k = 0; k < particles.size(); ++k)
+    {
+        lo = lo.cwiseMin(positions[k]);
+        hi = hi.cwiseMax(positions[k]);
+        maxRadius = std::max(maxRadius, particles[k].radius);
+    }
+    CellGrid grid(lo, hi, 2.0 * maxRadius, 8.0 * particles.size() + 64);
+    grid.build(positions);
+    double sum = 0.0;
+    grid.forEachPair([&](int a, int b)
+    {
+        if (particles[a].block == particles[b].block)
+        {
+            return;
+        }
+        const double overlap = particles[a].radius + particles[b].radius - (positions[b] - positions[a]).norm();
+        if (overlap > 0.0)
+        {
+            ++stats.touchingPairs;
+            sum += overlap;
+            stats.maxOverlap = std::max(stats.maxOverlap, overlap);
+        }
+    });
+    stats.meanOverlap = stats.touchingPairs > 0 ? sum / stats.touchingPairs : 0.0;
+    return stats;
 }
 
 } // namespace iceDEM

@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <tuple>
 
 namespace iceDEM
@@ -397,6 +398,23 @@ std::vector<BondState> IceBondForces::localBondStates() const
         return std::tie(x.tagA, x.tagB) < std::tie(y.tagA, y.tagB);
     });
     return states;
+}
+
+
+void IceBondForces::changeProperties(const IceProperties& props, double contactNormalStiffness)
+{
+    if (props.maxBondsPerParticle != ice_.maxBondsPerParticle)
+    {
+        throw std::logic_error("IceBondForces::changeProperties: the bond capacity per particle cannot change");
+    }
+    syncTable();    // the list is rebuilt with the new stiffnesses
+    models_ =
+    {
+        BondModel(props.family(BondFamily::ice), props.damping),
+        BondModel(props.family(BondFamily::freeze), props.damping)
+    };
+    ice_ = props;
+    contactNormalStiffness_ = contactNormalStiffness;
 }
 
 

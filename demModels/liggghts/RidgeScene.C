@@ -129,13 +129,15 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
     }
 
     const Dictionary& a = d.subDict("assembly");
-    a.checkKeys({"pressDepth", "pressSpeed", "relaxTime", "youngsModulus", "dampingAlpha"});
+    a.checkKeys({"pressDepth", "pressSpeed", "relaxTime", "youngsModulus", "dampingAlpha", "stiffenTime"});
     s.pressDepth = a.getScalarOrDefault("pressDepth", s.pressDepth);
     if (s.pressDepth < 0.0) a.fail("pressDepth", "must not be negative");
     s.pressSpeed = a.getPositiveScalarOrDefault("pressSpeed", s.pressSpeed);
     s.relaxTime = a.getScalarOrDefault("relaxTime", s.relaxTime);
     if (s.relaxTime < 0.0) a.fail("relaxTime", "must not be negative");
     s.assemblyYoungsModulus = a.getPositiveScalarOrDefault("youngsModulus", s.assemblyYoungsModulus);
+    s.stiffenTime = a.getScalarOrDefault("stiffenTime", s.stiffenTime);
+    if (s.stiffenTime < 0.0) a.fail("stiffenTime", "must not be negative (s; 0: bond at the soft contacts' overlaps)");
     s.assemblyDampingAlpha = a.getScalarOrDefault("dampingAlpha", s.assemblyDampingAlpha);
     if (s.assemblyDampingAlpha < 0.0 || s.assemblyDampingAlpha > 1.0)
     {
@@ -258,6 +260,54 @@ void RidgeScene::chooseContactsAndStep(const std::vector<ParticleSpec>& particle
 }
 
 
+// The keel settled, and the layer was pressed into it, with contacts far
+// softer than the ice's, so touching spheres overlap hundreds of times deeper
+// than the ice's stiffness allows. A bond made over such an overlap cancels
+// the contact while it holds; once broken, its pair would get the ice's
+// contact force on that overlap: kilonewtons, against freeze-bonds that break
+// at newtons, and the keel would shatter at the first break. So before any
+// bond is made the contacts (and the blocks' own bonds) stiffen to the ice's
+// in geometric stages, the keel relaxing at each under the held layer.
+void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
+{
+    constexpr int stages = 12;
+    const OverlapStatistics before = overlapStatistics(particles, allPositionsByTag(*lmp_));
+    const double soft = settings_.assemblyYoungsModulus;
+    const double hard = ice_.material.youngsModulus;
+    long steps = 0;
+    for (int k = 1; k <= stages; ++k)
+    {
+        const double modulus = soft * std::pow(hard / soft, static_cast<double>(k) / stages);
+        const IceProperties stage = ice_.softenedForAssembly(modulus, settings_.assemblyDampingAlpha);
+        chooseContactsAndStep(particles, stage);
+        setContactStiffness();
+        bonds_->changeProperties(stage, contact_.normalStiffness);
+        const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
+        lmp_->command("run " + std::to_string(n));
+        steps += n;
+    }
+    const OverlapStatistics after = overlapStatistics(particles, allPositionsByTag(*lmp_));
+    std::ostringstream msg;
+    msg << "Contacts stiffened from E = " << soft << " to " << hard << " Pa over " << settings_.stiffenTime
+        << " s (" << stages << " stages, " << steps << " steps): touching pairs between blocks " << before.touchingPairs
+        << " -> " << after.touchingPairs << ", mean overlap " << before.meanOverlap * 1e6 << " -> "
+        << after.meanOverlap * 1e6 << " um, largest " << before.maxOverlap * 1e6 << " -> "
+        << after.maxOverlap * 1e6 << " um";
+    log(msg.str());
+}
+
+
+void RidgeScene::setContactStiffness()
+{
+    const auto matrix = [](double value) { return typePairMatrix(value, value); };
+    lmp_->command("fix m1 all property/global kn peratomtypepair 3 " + matrix(contact_.normalStiffness));
+    lmp_->command("fix m2 all property/global kt peratomtypepair 3 " + matrix(contact_.tangentialStiffness));
+    lmp_->command("fix m3 all property/global gamman_abs peratomtypepair 3 " + matrix(contact_.normalDamping));
+    lmp_->command("fix m4 all property/global gammat_abs peratomtypepair 3 " + matrix(contact_.tangentialDamping));
+    lmp_->command("timestep " + exactNumber(dt_));
+}
+
+
 void RidgeScene::startLiggghts
 (
     const std::vector<ParticleSpec>& particles,
@@ -357,11 +407,10 @@ void RidgeScene::assemble()
     for (std::size_t k = layout.keelParticles; k < types.size(); ++k) types[k] = fixedType;
     chooseContactsAndStep(layout.particles, soft);
     startLiggghts(layout.particles, types, soft, "read_data " + path("DEM/ridge.data"));
-    const ContactParameters softContact = contact_;
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft, softContact.normalStiffness);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft, contact_.normalStiffness);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     waterForces_->defineAddedMassFix();
@@ -394,6 +443,11 @@ void RidgeScene::assemble()
         lmp_->command("run " + std::to_string(relaxSteps));
     }
 
+    if (settings_.stiffenTime > 0.0)
+    {
+        stiffenContacts(layout.particles);
+    }
+
     // Bonds at the pressed geometry: ice bonds within blocks and within the
     // layer, freeze-bonds wherever two blocks (or layer and keel) touch, with
     // the confinement of the contact forces they settled with.
@@ -413,7 +467,7 @@ void RidgeScene::assemble()
         if (b.family == BondFamily::ice) iceBonds.push_back(b);
     }
     const std::vector<NewFreezeBond> freezeBonds =
-        freezeBondsAtContacts(now, ice_, strengthModel_, softContact.normalStiffness);
+        freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
     const FreezeBondingStatistics freezeStats = freezeBondingStatistics(freezeBonds, now);
     long layerToKeel = 0;
     for (const NewFreezeBond& b : freezeBonds)
@@ -451,7 +505,7 @@ void RidgeScene::assemble()
     if (rank_ == 0)
     {
         ridge.write(path("DEM/ridge.h5"));
-        writeGeometry(geometry);
+        writeGeometry(geometry, ridge.particles);
     }
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
@@ -469,8 +523,17 @@ void RidgeScene::assemble()
 }
 
 
-void RidgeScene::writeGeometry(const RidgeGeometry& g) const
+void RidgeScene::writeGeometry(const RidgeGeometry& g, const std::vector<SavedParticle>& bonded) const
 {
+    std::vector<ParticleSpec> specs;
+    std::vector<Vec3> positions;
+    for (const SavedParticle& p : bonded)
+    {
+        specs.push_back({p.position, p.radius, p.block});
+        positions.push_back(p.position);
+    }
+    const OverlapStatistics atBonding = overlapStatistics(specs, positions);
+
     // The schema of postProcessing/failureAnalysis.py (postProcessing/README.md).
     std::ostringstream j;
     j << std::setprecision(10) << "{\"length\": " << g.length << ", \"width\": " << g.width
@@ -484,7 +547,9 @@ void RidgeScene::writeGeometry(const RidgeGeometry& g) const
     j << "],\n \"loadX\": " << 0.5 * g.length << ", \"loadHalfLength\": " << 0.5 * settings_.platenLength
       << ", \"supports\": [" << settings_.fixedEndLength << ", " << g.length - settings_.fixedEndLength
       << "], \"waterLevel\": " << g.waterLevel << ",\n \"particleRadius\": " << g.particleRadius
-      << ", \"depth\": " << g.depth() << ", \"test\": \"" << toString(settings_.test) << "\"}\n";
+      << ", \"depth\": " << g.depth() << ", \"test\": \"" << toString(settings_.test) << "\",\n"
+      << " \"overlapsBetweenBlocksAtBonding\": {\"touchingPairs\": " << atBonding.touchingPairs
+      << ", \"mean\": " << atBonding.meanOverlap << ", \"max\": " << atBonding.maxOverlap << "}}\n";
     writeFileAtomically(path("postProcessing/geometry.json"), j.str());
 }
 
@@ -544,7 +609,7 @@ void RidgeScene::load()
     geometry.waterLevel = ridge.waterLevel;
     if (rank_ == 0)
     {
-        writeGeometry(geometry);
+        writeGeometry(geometry, ridge.particles);
     }
     layerFirstTag_ = geometry.keelParticles + 1;
 

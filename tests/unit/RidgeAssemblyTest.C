@@ -140,3 +140,34 @@ TEST(RidgeAssembly, RefusesBadInput)
     EXPECT_THROW(assembleRidge(latticeKeel(), layer(-0.1), 0.05), std::invalid_argument);
     EXPECT_THROW(assembleRidge(latticeKeel(), layer(0.1), -0.05), std::invalid_argument);
 }
+
+
+TEST(RidgeAssembly, OverlapStatisticsCountOnlyPairsOfDifferentBlocks)
+{
+    // Three spheres of radius 0.05 on a line: 0 and 1 (one block) overlap by
+    // 3 mm, 1 and 2 (different blocks) by 1 mm, 2 and a fourth (different
+    // blocks) stand 1 mm apart.
+    std::vector<ParticleSpec> particles(4);
+    const double x[] = {0.0, 0.097, 0.196, 0.297};
+    const int block[] = {0, 0, 1, 2};
+    std::vector<Vec3> positions;
+    for (int k = 0; k < 4; ++k)
+    {
+        particles[k].radius = 0.05;
+        particles[k].block = block[k];
+        positions.emplace_back(x[k], 0.0, 0.0);
+    }
+    const OverlapStatistics stats = overlapStatistics(particles, positions);
+    EXPECT_EQ(stats.touchingPairs, 1);
+    EXPECT_NEAR(stats.meanOverlap, 0.001, 1e-12);
+    EXPECT_NEAR(stats.maxOverlap, 0.001, 1e-12);
+
+    positions[3].x() = 0.294;   // now it overlaps sphere 2 by 2 mm
+    const OverlapStatistics two = overlapStatistics(particles, positions);
+    EXPECT_EQ(two.touchingPairs, 2);
+    EXPECT_NEAR(two.meanOverlap, 0.0015, 1e-12);
+    EXPECT_NEAR(two.maxOverlap, 0.002, 1e-12);
+
+    positions.pop_back();
+    EXPECT_THROW(overlapStatistics(particles, positions), std::invalid_argument);
+}
