@@ -183,7 +183,9 @@ class RidgeFailureRules:
     earlyMajority: float = 0.5           # "first": this share of the first breaks
     dominantFraction: float = 0.6        # a region "dominates": this share of the breaks
     substantialFraction: float = 0.3     # a region "fails substantially": this share
-    concentrationFraction: float = 0.6   # CL breaks "concentrated" at mid-span: this share
+    concentrationFraction: float = 0.6   # CL breaks "concentrated" at its hinges: this share
+    supportHalfWidth: float = 0.25       # "at a support": |x - support| <= this (a clamped
+                                         # layer hinges at its ends as well as at mid-span)
     throughThicknessFraction: float = 0.5  # breaks cover this share of the layer's depth
     keelBottomFraction: float = 1.0 / 3.0  # "near the keel bottom": the lowest third
     plugBandHalfWidth: float = 0.06      # plug-shear band: |x - edge| <= this
@@ -252,9 +254,12 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
        bond centres cannot lie, at most a quarter of the depth each.)
     2. "mixed": CL and keel each hold >= substantialFraction of the breaks.
     3. "CL flexure": the CL holds >= dominantFraction and the keel < substantialFraction;
-       >= concentrationFraction of the CL breaks lie at mid-span (|x - loadX| <=
-       centreHalfWidth), covering >= throughThicknessFraction of the CL thickness; and
-       >= earlyMajority of the first breaks are in the CL.
+       >= concentrationFraction of the CL breaks lie at its hinges (mid-span, |x - loadX| <=
+       centreHalfWidth, or at a support, |x - support| <= supportHalfWidth: fixed ends hinge
+       too); those at mid-span cover >= throughThicknessFraction of the CL thickness; and
+       >= earlyMajority of the first ice-bond breaks (the earliest earlyFraction of them) are
+       in the CL. Ice bonds, not all bonds: weak freeze-bonds of the keel break first in every
+       ridge, whatever fails in the end.
     4. "keel V-crack from the bottom": the keel holds >= dominantFraction and the CL
        < substantialFraction; >= earlyMajority of the first breaks are in the keel's bottom
        keelBottomFraction at mid-span; and the median height of the keel breaks in the
@@ -295,6 +300,16 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
     layers = [lay for lay in (cl, keel) if lay]
     depth = (min(lay["zBottom"] for lay in layers), max(lay["zTop"] for lay in layers))
 
+    at_support = np.zeros(len(t), bool)
+    for support in geometry.get("supports", []):
+        at_support |= np.abs(x - support) <= rules.supportHalfWidth
+    ice = window & (record["family"] == 0)
+    ice_ordered = np.nonzero(ice)[0]
+    ice_ordered = ice_ordered[np.argsort(t[ice_ordered], kind="stable")]
+    early_ice = np.zeros(len(t), bool)
+    early_ice[ice_ordered[:max(1, int(math.ceil(rules.earlyFraction * len(ice_ordered))))]] = True
+    early_ice &= ice
+
     ev = {
         "window_end_s": None if windowEnd is None else float(windowEnd),
         "window_breaks": n, "first_breaks": n_early,
@@ -306,6 +321,9 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
         "first_share_keel_bottom_mid_span": _share(keel_bottom & mid, early),
         "first_share_mid_span": _share(mid, early),
         "cl_share_mid_span": _share(mid, window & in_cl),
+        "cl_share_hinges": _share(mid | at_support, window & in_cl),
+        "first_ice_breaks": int(early_ice.sum()),
+        "first_ice_share_cl": _share(in_cl, early_ice),
         "cl_thickness_cover_mid_span": _z_cover(z[window & in_cl & mid], cl["zBottom"],
                                                 cl["zTop"], geometry["particleRadius"])
         if cl else 0.0,
@@ -338,9 +356,9 @@ def classifyRidgeFailure(record, geometry, windowEnd=None, rules=RidgeFailureRul
         mode = "mixed"
     elif (ev["share_cl"] >= rules.dominantFraction
           and ev["share_keel"] < rules.substantialFraction
-          and ev["cl_share_mid_span"] >= rules.concentrationFraction
+          and ev["cl_share_hinges"] >= rules.concentrationFraction
           and ev["cl_thickness_cover_mid_span"] >= rules.throughThicknessFraction
-          and ev["first_share_cl"] >= rules.earlyMajority):
+          and ev["first_ice_share_cl"] >= rules.earlyMajority):
         mode = "CL flexure"
     elif (ev["share_keel"] >= rules.dominantFraction
           and ev["share_cl"] < rules.substantialFraction
@@ -367,9 +385,13 @@ def _evidence_text(ev, rules):
                 _pct(ev["first_share_cl"]), _pct(ev["first_share_keel"]), rules.centreHalfWidth,
                 _pct(ev["first_share_keel_bottom_mid_span"]), rules.centreHalfWidth,
                 _pct(ev["first_share_mid_span"])),
-             "CL breaks within %.2g m of mid-span: %s, covering %s of the CL thickness"
+             "CL breaks within %.2g m of mid-span: %s, covering %s of the CL thickness; at its "
+             "hinges (mid-span or within %.2g m of a support): %s; first %s of ice-bond breaks (%d) "
+             "in the CL: %s"
              % (rules.centreHalfWidth, _pct(ev["cl_share_mid_span"]),
-                _pct(ev["cl_thickness_cover_mid_span"]))]
+                _pct(ev["cl_thickness_cover_mid_span"]), rules.supportHalfWidth,
+                _pct(ev["cl_share_hinges"]), _pct(rules.earlyFraction), ev["first_ice_breaks"],
+                _pct(ev["first_ice_share_cl"]))]
     if ev.get("keel_first_median_height_m") is not None:
         late = ev["keel_late_median_height_m"]
         lines.append("keel: median height above its bottom of the first breaks %.3g m, of the "

@@ -68,10 +68,20 @@ class ClassifierTest(Folder):
                 self.assertEqual(result["mode"], name)
                 self.assertEqual(result["evidence"]["share_cl"], 0.0)
 
+    def test_a_clamped_layer_hinging_at_its_ends_is_cl_flexure(self):
+        result = self.classify("clamped CL flexure")
+        ev = result["evidence"]
+        self.assertEqual(ev["first_share_cl"], 0.0)         # the keel's freeze-bonds went first
+        self.assertLess(ev["cl_share_mid_span"], 0.6)        # a third at each end
+        self.assertGreater(ev["cl_share_hinges"], 0.95)
+        self.assertEqual(ev["first_ice_share_cl"], 1.0)
+        self.assertEqual(result["mode"], "CL flexure")
+
     def test_cl_breaks_scattered_along_the_span_are_not_cl_flexure(self):
         result = self.classify("scattered CL")
         self.assertEqual(result["mode"], "undetermined")
         self.assertLess(result["evidence"]["cl_share_mid_span"], 0.6)
+        self.assertLess(result["evidence"]["cl_share_hinges"], 0.6)
 
     def test_a_keel_crack_that_does_not_grow_upward_is_no_v_crack(self):
         result = self.classify("keel bottom band growing downward")

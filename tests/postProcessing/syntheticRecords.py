@@ -128,6 +128,15 @@ def scenario(name, seed=1):
         parts = [dict(time=1.0 + rng.uniform(0.0, 1.0, n),
                       x=MID - RIDGE["loadHalfLength"] + rng.normal(0.0, 0.015, n), z=z,
                       family=np.where(z < 0.5, FREEZE, ICE), mode=np.full(n, SHEAR))]
+    elif name == "clamped CL flexure":
+        # The keel's weak freeze-bonds go first; the layer then cracks through at mid-span and
+        # at both fixed ends (x = 0 and 3.05 in RIDGE), as a clamped beam must to fail.
+        ends = [cl_crack(rng, n=45, start=1.1) for _ in range(2)]
+        for crack, support in zip(ends, RIDGE["supports"]):
+            crack["x"] = crack["x"] - MID + support + (0.1 if support < MID else -0.1)
+        keel = scattered_keel(rng, 20, 0.9)
+        keel["time"] = 0.9 + 0.1 * (keel["time"] - 0.9)
+        parts = [keel, cl_crack(rng, n=60)] + ends
     elif name == "scattered CL":
         crack = cl_crack(rng)
         crack["x"] = rng.uniform(0.0, 3.05, len(crack["x"]))

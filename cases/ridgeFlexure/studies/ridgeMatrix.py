@@ -62,8 +62,9 @@ def run_dir(run, resolution):
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
 
-def prepare(run, resolution):
-    target = run_dir(run, resolution)
+def prepare(run, resolution, target=None):
+    """The run's case folder (default run_dir), made from the ridge case unless it exists."""
+    target = target or run_dir(run, resolution)
     if os.path.exists(os.path.join(target, "constant", "ridgeProperties")):
         return target
     iceCases.copy_case(CASE, target)

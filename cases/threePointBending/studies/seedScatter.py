@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Scatter of the flexural strength over random packings: the case's calibrated inputs run for
+every thickness with several packing seeds (constant/bendingProperties packing.seed).
+
+    studies/seedScatter.py [-thickness 0.10 0.15 0.20] [-seeds 1 2 3] [-jobs 2] [-out DIR]
+
+A single packing is one sample of a random solid, as one laboratory beam is; the calibration
+target is the regression through thousands of beams, so what should meet it is the mean over
+packings. Resumable (a run with a summary is skipped). Writes results/seedScatter.csv (per run)
+and results/seedScatter.md (per run, then per thickness: mean, sample standard deviation and the
+mean's error against the target)."""
+import argparse
+import concurrent.futures
+import math
+import os
+import statistics
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASE = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(CASE, "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+
+def run_one(out, thickness, seed):
+    case = os.path.join(out, f"D{thickness}_seed{seed}")
+    if os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+        return case
+    iceCases.copy_case(CASE, case)
+    iceCases.set_entry(os.path.join(case, "constant", "bendingProperties"), "packing.seed", seed)
+    iceCases.run_app("threePointBendingDEM", case, 1, ["-thickness", thickness], "log.threePointBendingDEM")
+    return case
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("-thickness", nargs="+", default=["0.10", "0.15", "0.20"])
+    p.add_argument("-seeds", nargs="+", type=int, default=[1, 2, 3])
+    p.add_argument("-jobs", type=int, default=2)
+    p.add_argument("-out", default=os.path.join(CASE, "runs", "seedScatter"))
+    a = p.parse_args()
+    if any(s < 0 for s in a.seeds):
+        sys.exit("seedScatter.py: -seeds must be non-negative integers")
+    os.makedirs(a.out, exist_ok=True)
+    jobs = sorted(((d, s) for d in a.thickness for s in a.seeds), key=lambda j: -float(j[0]))
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        cases = {job: pool.submit(run_one, a.out, *job) for job in jobs}
+        runs = {job: iceCases.summary(f.result()) for job, f in cases.items()}
+
+    head = ["thickness_m", "seed", "particles", "failure_force_N", "sigma_f_kPa", "target_kPa", "error",
+            "KE_over_elastic_at_peak", "steps", "wall_s"]
+    rows = []
+    for (d, seed), s in sorted(runs.items(), key=lambda kv: (float(kv[0][0]), kv[0][1])):
+        rows.append([f"{float(d):.2f}", str(seed), str(s["particles"]), f"{s['failure_force_N']:.1f}",
+                     f"{s['flexural_strength_Pa'] / 1e3:.1f}", f"{s['target_strength_Pa'] / 1e3:.0f}",
+                     f"{s['strength_error']:+.4f}", f"{s['kinetic_to_elastic_energy_at_peak']:.2g}",
+                     str(s["steps"]), f"{s['wall_s']:.0f}"])
+    md = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)] + ["| " + " | ".join(r) + " |" for r in rows]
+    md += ["", "| thickness_m | seeds | mean sigma_f [kPa] | std [kPa] | target [kPa] | error of the mean | "
+           "largest single error |", "|---|---|---|---|---|---|---|"]
+    for d in sorted({d for d, _ in runs}, key=float):
+        group = [s for (dd, _), s in runs.items() if dd == d]
+        strengths = [s["flexural_strength_Pa"] for s in group]
+        target = group[0]["target_strength_Pa"]
+        mean = statistics.fmean(strengths)
+        std = statistics.stdev(strengths) if len(strengths) > 1 else math.nan
+        worst = max((s["strength_error"] for s in group), key=abs)
+        md.append(f"| {float(d):.2f} | {len(group)} | {mean / 1e3:.1f} | {std / 1e3:.1f} | {target / 1e3:.0f} | "
+                  f"{mean / target - 1:+.1%} | {worst:+.1%} |")
+    results = os.path.join(CASE, "results")
+    os.makedirs(results, exist_ok=True)
+    iceCases.write_atomically(os.path.join(results, "seedScatter.csv"),
+                              "\n".join(",".join(r) for r in [head] + rows) + "\n")
+    iceCases.write_atomically(os.path.join(results, "seedScatter.md"), "\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    main()
