@@ -267,14 +267,13 @@ FreezeBondStrength FreezeBondStrengthModel::strength(double contactForce, double
 std::string FreezeBondStrengthModel::summary() const
 {
     std::ostringstream out;
-    out << "freeze-bonds after " << submersionTime_ << " min: ";
     if (kind_ == Kind::confinementLine)
     {
-        out << "sigma_T = " << slope_ << " p_c + " << intercept_*1e-3 << " kPa, shear/tensile " << shearRatio_;
+        out << "freeze-bonds after " << submersionTime_ << " min: sigma_T = " << slope_ << " p_c + " << intercept_*1e-3 << " kPa, shear/tensile " << shearRatio_;
     }
     else
     {
-        out << "set " << setName_ << ": tensile " << setTensile_*1e-3 << " kPa, shear " << setShear_*1e-3 << " kPa";
+        out << "freeze-bond set " << setName_ << ": tensile " << setTensile_*1e-3 << " kPa, shear " << setShear_*1e-3 << " kPa";
     }
     out << "; area correction c_f = " << areaCorrection_;
     return out.str();

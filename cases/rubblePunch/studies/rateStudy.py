@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Quasi-static check of the punch on a reduced keel: the keel of the tests (1.6 x 0.4 m, 0.25 m
-of rubble, ends fixed, set 4h) punched 30 mm at the case's platen speed and at half of it; writes
-rateStudy.csv (largest force and force at 10, 20, 30 mm at both speeds) next to this script.
+of rubble, ends fixed, set 4h) punched 30 mm at the case's platen speed, half and a quarter of it;
+writes rateStudy.csv (largest force and force at 10, 20, 30 mm at each speed) next to this script.
 
 usage: studies/rateStudy.py [WORK] [BIN_DIR]   (default WORK /tmp/rubblePunchRate, BIN_DIR build/demModels)"""
 import os
@@ -23,7 +23,7 @@ if not os.path.exists(keel_file(work)):
     build_keel(work, bin_dir)
 speed = float(iceCases.get_entry(os.path.join(HERE, "..", "constant", "ridgeProperties"), "test.speed"))
 rows = ["speed_m_per_s,max_force_N,force_10mm_N,force_20mm_N,force_30mm_N,wall_s"]
-for v in (speed, speed / 2):
+for v in (speed, speed / 2, speed / 4):
     case = ridge_case("rubblePunch", os.path.join(work, f"v{v:g}"), work,
                       # Samples 10 um apart: the loop's blow-up check weighs the kinetic energy
                       # against the work of the sampled force, and a block's first impact on the
