@@ -6,9 +6,10 @@ every thickness with several packing seeds (constant/bendingProperties packing.s
 
 A single packing is one sample of a random solid, as one laboratory beam is; the calibration
 target is the regression through thousands of beams, so what should meet it is the mean over
-packings. Resumable (a run with a summary is skipped). Writes results/seedScatter.csv (per run)
-and results/seedScatter.md (per run, then per thickness: mean, sample standard deviation and the
-mean's error against the target)."""
+packings. Resumable (a run with a summary is skipped). Writes results/seedScatter_breakN<value>.csv
+(per run) and .md (per run, then per thickness: mean, sample standard deviation and the mean's
+error against the target), named by the case's bondFamilies.ice.breakN; runs go to
+runs/seedScatter_breakN<value>/ unless -out says otherwise."""
 import argparse
 import concurrent.futures
 import math
@@ -37,8 +38,10 @@ def main():
     p.add_argument("-thickness", nargs="+", default=["0.10", "0.15", "0.20"])
     p.add_argument("-seeds", nargs="+", type=int, default=[1, 2, 3])
     p.add_argument("-jobs", type=int, default=2)
-    p.add_argument("-out", default=os.path.join(CASE, "runs", "seedScatter"))
+    p.add_argument("-out", default=None)
     a = p.parse_args()
+    label = "breakN" + iceCases.get_entry(os.path.join(CASE, "constant", "iceProperties"), "bondFamilies.ice.breakN")
+    a.out = a.out or os.path.join(CASE, "runs", "seedScatter_" + label)
     if any(s < 0 for s in a.seeds):
         sys.exit("seedScatter.py: -seeds must be non-negative integers")
     os.makedirs(a.out, exist_ok=True)
@@ -69,9 +72,9 @@ def main():
                   f"{mean / target - 1:+.1%} | {worst:+.1%} |")
     results = os.path.join(CASE, "results")
     os.makedirs(results, exist_ok=True)
-    iceCases.write_atomically(os.path.join(results, "seedScatter.csv"),
+    iceCases.write_atomically(os.path.join(results, f"seedScatter_{label}.csv"),
                               "\n".join(",".join(r) for r in [head] + rows) + "\n")
-    iceCases.write_atomically(os.path.join(results, "seedScatter.md"), "\n".join(md) + "\n")
+    iceCases.write_atomically(os.path.join(results, f"seedScatter_{label}.md"), "\n".join(md) + "\n")
     print("\n".join(md))
 
 
