@@ -87,22 +87,14 @@ std::vector<BondPair> BondBuilder::build(const std::vector<ParticleSpec>& partic
     }
 
     std::vector<Vec3> positions(particles.size());
-    Vec3 lo = particles.front().position;
-    Vec3 hi = lo;
     double maxRadius = 0.0;
     for (std::size_t i = 0; i < particles.size(); ++i)
     {
         positions[i] = particles[i].position;
-        lo = lo.cwiseMin(positions[i]);
-        hi = hi.cwiseMax(positions[i]);
         maxRadius = std::max(maxRadius, particles[i].radius);
     }
     const double maxFactor = *std::max_element(distFactors_.begin(), distFactors_.end());
-    // Coarser cells for a sparse cloud, which would otherwise need far more cells than particles.
-    CellGrid grid(lo, hi, 2.0*maxFactor*maxRadius, 8.0*particles.size() + 64.0);
-    grid.build(positions);
-
-    grid.forEachPair([&](int a, int b)
+    CellGrid::around(positions, 2.0*maxFactor*maxRadius).forEachPair([&](int a, int b)
     {
         const ParticleSpec& pa = particles[a];
         const ParticleSpec& pb = particles[b];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace iceDEM
 {
@@ -30,6 +31,24 @@ CellGrid::CellGrid(const Vec3& lo, const Vec3& hi, double minCellSize, double ma
     {
         invSize_[k] = extent[k] > 0.0 ? n_[k]/extent[k] : 0.0;
     }
+}
+
+
+CellGrid CellGrid::around(const std::vector<Vec3>& points, double minCellSize)
+{
+    if (points.empty())
+    {
+        throw std::invalid_argument("CellGrid::around: no points");
+    }
+    Vec3 lo = points.front(), hi = lo;
+    for (const Vec3& p : points)
+    {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    CellGrid grid(lo, hi, minCellSize, 8.0*points.size() + 64.0);
+    grid.build(points);
+    return grid;
 }
 
 

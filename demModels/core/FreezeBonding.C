@@ -33,21 +33,15 @@ std::vector<NewFreezeBond> freezeBondsAtContacts
         return bonds;
     }
     const BondFamilyParameters& family = ice.family(BondFamily::freeze);
-    Vec3 lo = particles.front().position, hi = lo;
     double maxRadius = 0.0;
     std::vector<Vec3> positions;
     positions.reserve(particles.size());
     for (const ParticleSpec& p : particles)
     {
-        lo = lo.cwiseMin(p.position);
-        hi = hi.cwiseMax(p.position);
         maxRadius = std::max(maxRadius, p.radius);
         positions.push_back(p.position);
     }
-    const double reach = 2.0*maxRadius*family.distFactor;
-    CellGrid grid(lo, hi, reach, 8.0*particles.size() + 64);
-    grid.build(positions);
-    grid.forEachPair([&](int a, int b)
+    CellGrid::around(positions, 2.0*maxRadius*family.distFactor).forEachPair([&](int a, int b)
     {
         const ParticleSpec& pa = particles[a];
         const ParticleSpec& pb = particles[b];

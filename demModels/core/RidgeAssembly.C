@@ -139,18 +139,13 @@ OverlapStatistics overlapStatistics(const std::vector<ParticleSpec>& particles, 
     {
         return stats;
     }
-    Vec3 lo = positions.front(), hi = lo;
     double maxRadius = 0.0;
-    for (std::size_t k = 0; k < particles.size(); ++k)
+    for (const ParticleSpec& p : particles)
     {
-        lo = lo.cwiseMin(positions[k]);
-        hi = hi.cwiseMax(positions[k]);
-        maxRadius = std::max(maxRadius, particles[k].radius);
+        maxRadius = std::max(maxRadius, p.radius);
     }
-    CellGrid grid(lo, hi, 2.0 * maxRadius, 8.0 * particles.size() + 64);
-    grid.build(positions);
     double sum = 0.0;
-    grid.forEachPair([&](int a, int b)
+    CellGrid::around(positions, 2.0 * maxRadius).forEachPair([&](int a, int b)
     {
         if (particles[a].block == particles[b].block)
         {

@@ -67,6 +67,16 @@ private:
 };
 
 
+std::array<BondModel, nBondFamilies> IceBondForces::modelsOf(const IceProperties& props)
+{
+    return
+    {
+        BondModel(props.family(BondFamily::ice), props.damping),
+        BondModel(props.family(BondFamily::freeze), props.damping)
+    };
+}
+
+
 IceBondForces::IceBondForces
 (
     LiggghtsInstance& lmp,
@@ -75,11 +85,7 @@ IceBondForces::IceBondForces
 )
 :
     lmp_(lmp),
-    models_
-    {
-        BondModel(props.family(BondFamily::ice), props.damping),
-        BondModel(props.family(BondFamily::freeze), props.damping)
-    },
+    models_(modelsOf(props)),
     ice_(props),
     contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
@@ -408,11 +414,7 @@ void IceBondForces::changeProperties(const IceProperties& props, double contactN
         throw std::logic_error("IceBondForces::changeProperties: the bond capacity per particle cannot change");
     }
     syncTable();    // the list is rebuilt with the new stiffnesses
-    models_ =
-    {
-        BondModel(props.family(BondFamily::ice), props.damping),
-        BondModel(props.family(BondFamily::freeze), props.damping)
-    };
+    models_ = modelsOf(props);
     ice_ = props;
     contactNormalStiffness_ = contactNormalStiffness;
 }
