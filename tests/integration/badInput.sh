@@ -5,21 +5,11 @@
 set -uo pipefail
 case_dir="$1"; work="$2"; app="$3"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-passed=0; failed=0
+source "$(dirname "${BASH_SOURCE[0]}")/refusalChecks.sh"
 
-check() {   # name, file, sed expression, expected text in the message
-    local name="$1" file="$2" edit="$3" expected="$4"
-    rm -rf "$work/$name"; mkdir -p "$work/$name"
-    cp -r "$case_dir/constant" "$case_dir/system" "$case_dir/DEM" "$work/$name/"
-    if [ "$edit" = delete ]; then rm "$work/$name/$file"; else sed -i -e "$edit" "$work/$name/$file"; fi
-    out=$(mpirun -np 1 "$app" -case "$work/$name" -particles 100 2>&1); rc=$?
-    if [ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -qF -- "$expected" <<<"$out"; then
-        echo "ok   $name: $(grep -F -- "$expected" <<<"$out" | head -1 | sed 's/^ *//')"
-        passed=$((passed + 1))
-    else
-        echo "FAIL $name (exit $rc), expected '$expected' in:"; echo "$out" | tail -5
-        failed=$((failed + 1))
-    fi
+check() {   # name, file, sed expression (or "delete"), expected text in the message
+    copy_broken_case "$1" "$2" "$3"
+    expect_refusal "$1" "$4" -particles 100
 }
 
 check negativeModulus   constant/iceProperties  '0,/youngsModulus .*;/s//youngsModulus -5.4e8;/' "material.youngsModulus"
@@ -32,5 +22,4 @@ check tooFewBondSlots   constant/iceProperties  's/maxBondsPerParticle .*;/maxBo
 check missingFile       constant/beamProperties delete                         "beamProperties"
 check missingScript     DEM/in.levelIceBeam     delete                         "in.levelIceBeam"
 
-echo "$passed passed, $failed failed"
-[ $failed -eq 0 ]
+report
