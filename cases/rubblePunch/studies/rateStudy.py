@@ -1,9 +1,12 @@
 #!/usr/bin/python3
 """Quasi-static check of the punch on a reduced keel: the keel of the tests (1.6 x 0.4 m, 0.25 m
-of rubble, ends fixed, set 4h) punched 30 mm at the case's platen speed, half and a quarter of it;
-writes rateStudy.csv (largest force and force at 10, 20, 30 mm at each speed) next to this script.
+of rubble, ends fixed, set 4h) punched 30 mm at the case's platen speed, half and a quarter of it,
+and at the 5 mm/s of scenes.md section 6; writes rateStudy.csv (largest force, force at 10, 20,
+30 mm as the mean over +-2.5 mm, mean force over 5-30 mm, at each speed) next to this script.
 
-usage: studies/rateStudy.py [WORK] [BIN_DIR]   (default WORK /tmp/rubblePunchRate, BIN_DIR build/demModels)"""
+usage: studies/rateStudy.py [-work WORK] [-bin BIN_DIR] [-speeds V ...]
+       (default WORK /tmp/rubblePunchRate, BIN_DIR build/demModels)"""
+import argparse
 import os
 import sys
 
@@ -16,14 +19,27 @@ sys.path.insert(0, os.path.join(TOP, "postProcessing"))
 import iceCases  # noqa: E402
 from ridgeSmall import build_keel, keel_file, ridge_case  # noqa: E402
 
-work = sys.argv[1] if len(sys.argv) > 1 else "/tmp/rubblePunchRate"
-bin_dir = os.path.abspath(sys.argv[2] if len(sys.argv) > 2 else os.path.join(TOP, "build", "demModels"))
+caseSpeed = float(iceCases.get_entry(os.path.join(HERE, "..", "constant", "ridgeProperties"), "test.speed"))
+parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("-work", default="/tmp/rubblePunchRate")
+parser.add_argument("-bin", default=os.path.join(TOP, "build", "demModels"))
+parser.add_argument("-speeds", type=float, nargs="+",
+                    default=[caseSpeed, caseSpeed / 2, caseSpeed / 4, 0.005])
+args = parser.parse_args()
+work = args.work
+bin_dir = os.path.abspath(args.bin)
 os.makedirs(work, exist_ok=True)
 if not os.path.exists(keel_file(work)):
     build_keel(work, bin_dir)
-speed = float(iceCases.get_entry(os.path.join(HERE, "..", "constant", "ridgeProperties"), "test.speed"))
-rows = ["speed_m_per_s,max_force_N,force_10mm_N,force_20mm_N,force_30mm_N,wall_s"]
-for v in (speed, speed / 2, speed / 4):
+
+
+def window_mean(c, lo, hi):
+    inside = (c["travel"] >= lo) & (c["travel"] <= hi)
+    return c["force"][inside].mean()
+
+
+rows = ["speed_m_per_s,max_force_N,force_10mm_N,force_20mm_N,force_30mm_N,mean_force_5_30mm_N,wall_s"]
+for v in args.speeds:
     case = ridge_case("rubblePunch", os.path.join(work, f"v{v:g}"), work,
                       # Samples 10 um apart: the loop's blow-up check weighs the kinetic energy
                       # against the work of the sampled force, and a block's first impact on the
@@ -33,7 +49,7 @@ for v in (speed, speed / 2, speed / 4):
                       entries=(("test.speed", v),))
     wall = iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
     c = {k: np.array(x) for k, x in iceCases.curve(case).items()}
-    at = [np.interp(d, c["travel"], c["force"]) for d in (0.01, 0.02, 0.03)]
-    rows.append(",".join(f"{x:.4g}" for x in (v, c["force"].max(), *at, wall)))
+    at = [window_mean(c, d - 0.0025, d + 0.0025) for d in (0.01, 0.02, 0.03)]
+    rows.append(",".join(f"{x:.4g}" for x in (v, c["force"].max(), *at, window_mean(c, 0.005, 0.03), wall)))
     print(rows[-1], flush=True)
 iceCases.write_atomically(os.path.join(HERE, "rateStudy.csv"), "\n".join(rows) + "\n")
