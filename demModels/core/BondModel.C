@@ -172,6 +172,27 @@ BreakMode BondModel::breakage
 }
 
 
+BreakMode BondModel::breakMode
+(
+    const BondState& state,
+    const BondStiffness& k,
+    double normalForce,
+    double shearForce2,
+    double twistTorque2,
+    double bendingTorque2
+) const
+{
+    if (family_.unbreakable || surelyIntact(state, k, normalForce, shearForce2, twistTorque2, bendingTorque2))
+    {
+        return BreakMode::none;
+    }
+    return breakage
+    (
+        state, k, normalForce, std::sqrt(shearForce2), std::sqrt(twistTorque2), std::sqrt(bendingTorque2)
+    );
+}
+
+
 BondLoad BondModel::evaluate
 (
     BondState& state,
@@ -441,20 +462,8 @@ void BondModel::evaluateLanes
         load.centre = get(centre, l);
         load.length = length.v[l];
         load.direction = get(n, l);
-        load.broke = BreakMode::none;
-        if
-        (
-            !family_.unbreakable
-         && !surelyIntact(s, *stiffnesses[l], springNormalForce.v[l], shear2.v[l], twist2.v[l], bending2.v[l])
-        )
-        {
-            // The limits apply to the spring loads, before any viscous damping.
-            load.broke = breakage
-            (
-                s, *stiffnesses[l], springNormalForce.v[l],
-                std::sqrt(shear2.v[l]), std::sqrt(twist2.v[l]), std::sqrt(bending2.v[l])
-            );
-        }
+        // The limits apply to the spring loads, before any viscous damping.
+        load.broke = breakMode(s, *stiffnesses[l], springNormalForce.v[l], shear2.v[l], twist2.v[l], bending2.v[l]);
         if (load.broke != BreakMode::none)
         {
             load.normalForce = 0.0;
@@ -466,21 +475,6 @@ void BondModel::evaluateLanes
         load.torqueOnA = get(torqueOnA, l);
         load.torqueOnB = get(torqueOnB, l);
     }
-}
-
-
-void BondModel::evaluateBatch
-(
-    int count,
-    BondState* const states[],
-    const BondStiffness* const stiffnesses[],
-    const ParticleState* const a[],
-    const ParticleState* const b[],
-    double dt,
-    BondLoad loads[]
-) const
-{
-    evaluateLanes<batchSize>(count, states, stiffnesses, a, b, dt, loads);
 }
 
 
