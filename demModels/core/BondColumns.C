@@ -3,13 +3,14 @@
 namespace iceDEM
 {
 
-std::array<std::vector<double>*, 12> BondColumns::doubleColumns()
+std::array<std::vector<double>*, 16> BondColumns::doubleColumns()
 {
     return
     {
         &restLength_, &kNormal_, &kShear_, &kTwist_, &kBending_, &twistAngle_,
         &shearDisplacement_[0], &shearDisplacement_[1], &shearDisplacement_[2],
-        &bendingAngle_[0], &bendingAngle_[1], &bendingAngle_[2]
+        &bendingAngle_[0], &bendingAngle_[1], &bendingAngle_[2],
+        &intactNormalForce_, &intactShearForce2_, &intactTwistTorque2_, &intactBendingTorque2_
     };
 }
 
@@ -29,7 +30,10 @@ void BondColumns::resize(std::size_t count)
 }
 
 
-void BondColumns::set(std::size_t bond, int a, int b, const BondState& state, const BondStiffness& k)
+void BondColumns::set
+(
+    std::size_t bond, int a, int b, const BondState& state, const BondStiffness& k, const IntactBounds& intact
+)
 {
     a_[bond] = a;
     b_[bond] = b;
@@ -39,6 +43,10 @@ void BondColumns::set(std::size_t bond, int a, int b, const BondState& state, co
     kTwist_[bond] = k.twist;
     kBending_[bond] = k.bending;
     twistAngle_[bond] = state.twistAngle;
+    intactNormalForce_[bond] = intact.normalForce;
+    intactShearForce2_[bond] = intact.shearForce2;
+    intactTwistTorque2_[bond] = intact.twistTorque2;
+    intactBendingTorque2_[bond] = intact.bendingTorque2;
     for (int c = 0; c < 3; ++c)
     {
         shearDisplacement_[c][bond] = state.shearDisplacement[c];
@@ -84,7 +92,9 @@ BondColumnsView BondColumns::view(const KernelAtom* atoms)
         atoms, a_.data(), b_.data(), restLength_.data(), kNormal_.data(), kShear_.data(),
         kTwist_.data(), kBending_.data(), twistAngle_.data(),
         {shearDisplacement_[0].data(), shearDisplacement_[1].data(), shearDisplacement_[2].data()},
-        {bendingAngle_[0].data(), bendingAngle_[1].data(), bendingAngle_[2].data()}
+        {bendingAngle_[0].data(), bendingAngle_[1].data(), bendingAngle_[2].data()},
+        intactNormalForce_.data(), intactShearForce2_.data(), intactTwistTorque2_.data(),
+        intactBendingTorque2_.data()
     };
 }
 

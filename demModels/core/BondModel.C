@@ -81,38 +81,6 @@ BondState BondModel::create
 }
 
 
-inline bool BondModel::surelyIntact
-(
-    const BondState& state,
-    const BondStiffness& k,
-    double normalForce,
-    double shearForce2,
-    double twistTorque2,
-    double bendingTorque2
-) const
-{
-    // Below this fraction of a limit, round-off cannot make the exact ratio reach 1.
-    constexpr double margin = 0.99;
-    auto square = [](double x) { return x * x; };
-    const double sigmaT = margin * state.tensileStrength;
-    const double tau = margin * state.shearStrength;
-    if (family_.criterion == BreakageCriterion::separate)
-    {
-        return normalForce < sigmaT * k.area
-            && shearForce2 < square(tau * k.area)
-            && twistTorque2 < square(family_.twistStrengthFactor * tau * k.area15)
-            && bendingTorque2 < square(family_.bendingStrengthFactor * sigmaT * k.area15);
-    }
-    // Combined: sigma + bending stress < sigma_t, and (shear + twist stress)^2,
-    // which is at most twice the sum of their squares, < tau^2.
-    const double tensionReserve = sigmaT - normalForce / k.area;
-    return tensionReserve > 0.0
-        && bendingTorque2 * square(k.bondRadius / k.inertia) < square(tensionReserve)
-        && 2.0 * (shearForce2 / square(k.area) + twistTorque2 * square(k.bondRadius / k.polarInertia))
-           < square(tau);
-}
-
-
 BreakMode BondModel::breakage
 (
     const BondState& state,
@@ -169,27 +137,6 @@ BreakMode BondModel::breakage
         ratio(shearStress + twistStress, tau)
     );
     return mode;
-}
-
-
-BreakMode BondModel::breakMode
-(
-    const BondState& state,
-    const BondStiffness& k,
-    double normalForce,
-    double shearForce2,
-    double twistTorque2,
-    double bendingTorque2
-) const
-{
-    if (family_.unbreakable || surelyIntact(state, k, normalForce, shearForce2, twistTorque2, bendingTorque2))
-    {
-        return BreakMode::none;
-    }
-    return breakage
-    (
-        state, k, normalForce, std::sqrt(shearForce2), std::sqrt(twistTorque2), std::sqrt(bendingTorque2)
-    );
 }
 
 

@@ -301,7 +301,9 @@ void IceBondForces::rebuildList()
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
         const ListedBond& bond = list_[k];
-        columns_.set(k, bond.a, bond.b, bond.state, stiffnesses_[bond.stiffness]);
+        const BondStiffness& stiffness = stiffnesses_[bond.stiffness];
+        const BondModel& model = models_[static_cast<int>(bond.state.family)];
+        columns_.set(k, bond.a, bond.b, bond.state, stiffness, model.intactBounds(bond.state, stiffness));
     }
     columns_.pad();
 
@@ -538,6 +540,7 @@ void IceBondForces::compute()
         }
     };
     constexpr int sumEvery = 64;   // entries of a between sums
+    constexpr std::size_t prefetchAhead = 2 * bondKernelLanes;
     int steppedBelow = 0;          // every bond with a below this is stepped
     const std::size_t bonds = list_.size();
     const BondColumnsView columns = columns_.view(particles_.data());
@@ -546,9 +549,9 @@ void IceBondForces::compute()
     for (std::size_t first = 0; first < bonds; first += bondKernelLanes)
     {
         const std::size_t end = std::min(first + bondKernelLanes, bonds);
-        if (list_[first].a >= steppedBelow + sumEvery)
+        if (columns.a[first] >= steppedBelow + sumEvery)
         {
-            steppedBelow = list_[first].a;
+            steppedBelow = columns.a[first];
             sumBelow(steppedBelow);
         }
         // Broken bonds are stepped too (it is cheaper than leaving them out),
@@ -556,9 +559,10 @@ void IceBondForces::compute()
         int lastAtom = 0;
         for (std::size_t k = first; k < end; ++k)
         {
-            lastAtom = std::max({lastAtom, list_[k].a, list_[k].b});
+            lastAtom = std::max({lastAtom, columns.a[k], columns.b[k]});
         }
         gatherUpTo(lastAtom);
+        prefetchBEnds(columns, std::min(first + prefetchAhead, bonds), std::min(end + prefetchAhead, bonds));
         kernel_(columns, settings, first, result);
         for (std::size_t k = first; k < end; ++k)
         {
@@ -569,6 +573,22 @@ void IceBondForces::compute()
         }
     }
     sumBelow(entries);
+}
+
+
+void IceBondForces::prefetchBEnds(const BondColumnsView& columns, std::size_t first, std::size_t end) const
+{
+    // A bond's b atom, and so its slot, can lie far from its a in the atom
+    // order: ask for them before the kernel and apply() need them.
+    for (std::size_t k = first; k < end; ++k)
+    {
+        const char* atom = reinterpret_cast<const char*>(&particles_[columns.b[k]]);
+        const char* slot = reinterpret_cast<const char*>(&slots_[slotOfB_[k]]);
+        __builtin_prefetch(atom);
+        __builtin_prefetch(atom + sizeof(KernelAtom) - 1);
+        __builtin_prefetch(slot, 1);
+        __builtin_prefetch(slot + sizeof(LoadSlot) - 1, 1);
+    }
 }
 
 
@@ -599,15 +619,15 @@ BondKernelSettings IceBondForces::kernelSettings() const
 
 void IceBondForces::apply(std::size_t k, const BondKernelResult& result, int l)
 {
+    LoadSlot& onA = slots_[slotOfA_[k]];
+    LoadSlot& onB = slots_[slotOfB_[k]];
     const ListedBond& bond = list_[k];
     const BondState& state = bond.state;   // its tags, family and strengths
-    const BreakMode broke = models_[static_cast<int>(state.family)].breakMode
+    const BreakMode broke = result.surelyIntact[l] ? BreakMode::none : models_[static_cast<int>(state.family)].breakMode
     (
         state, stiffnesses_[bond.stiffness], result.springNormalForce[l],
         result.shearForce2[l], result.twistTorque2[l], result.bendingTorque2[l]
     );
-    LoadSlot& onA = slots_[slotOfA_[k]];
-    LoadSlot& onB = slots_[slotOfB_[k]];
     if (broke != BreakMode::none)
     {
         const int nlocal = lmp_.engine().atom->nlocal;

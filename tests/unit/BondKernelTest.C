@@ -1,4 +1,4 @@
-// The four-bond kernels (generic and AVX2) against BondModel::evaluate, one
+// The bond kernels (generic and AVX2) against BondModel::evaluate, one
 // bond at a time, bit for bit.
 
 #include "BondColumns.H"
@@ -110,7 +110,8 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
         const ParticleState& a = bonds.particles[2 * i];
         const ParticleState& b = bonds.particles[2 * i + 1];
         stiffnesses.push_back(BondStiffness::of(model.parameters(), a.radius, b.radius));
-        columns.set(i, 2 * i, 2 * i + 1, bonds.states[i], stiffnesses.back());
+        columns.set(i, 2 * i, 2 * i + 1, bonds.states[i], stiffnesses.back(),
+                    model.intactBounds(bonds.states[i], stiffnesses.back()));
     }
     columns.pad();
     BondKernelSettings settings;
@@ -120,7 +121,7 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
     settings.contactNormalStiffness = contactStiffness;
     const BondColumnsView view = columns.view(atoms.data());
 
-    int broken = 0, overlapping = 0;
+    int broken = 0, overlapping = 0, surelyIntact = 0;
     for (int first = 0; first < RandomBonds::count; first += bondKernelLanes)
     {
         BondKernelResult result;
@@ -138,6 +139,11 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
                 result.shearForce2[l], result.twistTorque2[l], result.bendingTorque2[l]
             );
             EXPECT_EQ(mode, load.broke) << i;
+            if (result.surelyIntact[l])
+            {
+                EXPECT_EQ(load.broke, BreakMode::none) << i;
+                ++surelyIntact;
+            }
             broken += mode != BreakMode::none;
             BondState stepped = bonds.states[i];
             columns.copyHistory(i, stepped);
@@ -165,6 +171,7 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
         }
     }
     EXPECT_GT(broken, 0);
+    EXPECT_GT(surelyIntact, 0);
     EXPECT_GT(overlapping, 0);
     EXPECT_LT(broken + overlapping, RandomBonds::count);
 }
