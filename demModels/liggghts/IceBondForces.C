@@ -348,11 +348,12 @@ void IceBondForces::rebuildList()
         std::sort(atomBonds.begin() + firstOfAtom_[e], atomBonds.begin() + firstOfAtom_[e + 1],
             [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
     }
-    const int ghostEnds = firstOfAtom_[entries];   // the slot they all write to
-    slots_.resize(ghostEnds + 1);
-    slotOfA_.assign(list_.size(), ghostEnds);
-    slotOfB_.assign(list_.size(), ghostEnds);
-    for (int n = 0; n < ghostEnds; ++n)
+    const int unsummed = firstOfAtom_[entries];   // the slot of ghosts' and padding's ends
+    slots_.resize(unsummed + 1);
+    const std::size_t padded = (list_.size() + bondKernelLanes - 1) / bondKernelLanes * bondKernelLanes;
+    slotOfA_.assign(padded, unsummed);
+    slotOfB_.assign(padded, unsummed);
+    for (int n = 0; n < unsummed; ++n)
     {
         const int end = atomBonds[n];
         (end % 2 ? slotOfB_ : slotOfA_)[end / 2] = n;
@@ -543,7 +544,10 @@ void IceBondForces::compute()
     constexpr std::size_t prefetchAhead = 2 * bondKernelLanes;
     int steppedBelow = 0;          // every bond with a below this is stepped
     const std::size_t bonds = list_.size();
-    const BondColumnsView columns = columns_.view(particles_.data());
+    BondColumnsView columns = columns_.view(particles_.data());
+    columns.loads = slots_.data();
+    columns.loadOfA = slotOfA_.data();
+    columns.loadOfB = slotOfB_.data();
     const BondKernelSettings settings = kernelSettings();
     BondKernelResult result;
     for (std::size_t first = 0; first < bonds; first += bondKernelLanes)
@@ -563,12 +567,13 @@ void IceBondForces::compute()
         }
         gatherUpTo(lastAtom);
         prefetchBEnds(columns, std::min(first + prefetchAhead, bonds), std::min(end + prefetchAhead, bonds));
-        kernel_(columns, settings, first, result);
-        for (std::size_t k = first; k < end; ++k)
+        const int mayBreak = kernel_(columns, settings, first, result);
+        for (std::size_t k = first; mayBreak && k < end; ++k)
         {
-            if (intact_[k])
+            const int lane = static_cast<int>(k - first);
+            if ((mayBreak >> lane & 1) && intact_[k])
             {
-                apply(k, result, static_cast<int>(k - first));
+                breakIfOverLimit(k, result, lane);
             }
         }
     }
@@ -579,7 +584,7 @@ void IceBondForces::compute()
 void IceBondForces::prefetchBEnds(const BondColumnsView& columns, std::size_t first, std::size_t end) const
 {
     // A bond's b atom, and so its slot, can lie far from its a in the atom
-    // order: ask for them before the kernel and apply() need them.
+    // order: ask for them before the kernel needs them.
     for (std::size_t k = first; k < end; ++k)
     {
         const char* atom = reinterpret_cast<const char*>(&particles_[columns.b[k]]);
@@ -587,7 +592,7 @@ void IceBondForces::prefetchBEnds(const BondColumnsView& columns, std::size_t fi
         __builtin_prefetch(atom);
         __builtin_prefetch(atom + sizeof(KernelAtom) - 1);
         __builtin_prefetch(slot, 1);
-        __builtin_prefetch(slot + sizeof(LoadSlot) - 1, 1);
+        __builtin_prefetch(slot + sizeof(BondEndLoad) - 1, 1);
     }
 }
 
@@ -617,13 +622,11 @@ BondKernelSettings IceBondForces::kernelSettings() const
 }
 
 
-void IceBondForces::apply(std::size_t k, const BondKernelResult& result, int l)
+void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& result, int l)
 {
-    LoadSlot& onA = slots_[slotOfA_[k]];
-    LoadSlot& onB = slots_[slotOfB_[k]];
     const ListedBond& bond = list_[k];
     const BondState& state = bond.state;   // its tags, family and strengths
-    const BreakMode broke = result.surelyIntact[l] ? BreakMode::none : models_[static_cast<int>(state.family)].breakMode
+    const BreakMode broke = models_[static_cast<int>(state.family)].breakMode
     (
         state, stiffnesses_[bond.stiffness], result.springNormalForce[l],
         result.shearForce2[l], result.twistTorque2[l], result.bendingTorque2[l]
@@ -644,16 +647,15 @@ void IceBondForces::apply(std::size_t k, const BondKernelResult& result, int l)
             removeFromTable(b, state.tagA);
         }
         intact_[k] = 0;
-        // Adding -0 leaves every sum as it is, even a sum of -0.
-        onA = onB = LoadSlot{{-0.0, -0.0, -0.0}, {-0.0, -0.0, -0.0}};
-        return;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-        onA.force[c] = result.forceOnA[c][l];
-        onB.force[c] = -result.forceOnA[c][l];
-        onA.moment[c] = result.torqueOnA[c][l];
-        onB.moment[c] = result.torqueOnB[c][l];
+        // Adding -0 leaves every sum as it is, even a sum of -0. From now on
+        // the kernel writes the bond's loads where nobody sums them.
+        const BondEndLoad none{{-0.0, -0.0, -0.0}, {-0.0, -0.0, -0.0}};
+        const int unsummed = static_cast<int>(slots_.size()) - 1;
+        for (std::vector<int>* slotOf : {&slotOfA_, &slotOfB_})
+        {
+            slots_[(*slotOf)[k]] = none;
+            (*slotOf)[k] = unsummed;
+        }
     }
 }
 
@@ -670,7 +672,7 @@ void IceBondForces::sumLoads(int entry)
     Vec3 moment = row(atom.torque, i);
     for (int n = firstOfAtom_[entry]; n < firstOfAtom_[entry + 1]; ++n)
     {
-        const LoadSlot& slot = slots_[n];
+        const BondEndLoad& slot = slots_[n];
         for (int c = 0; c < 3; ++c)
         {
             force[c] += slot.force[c];
