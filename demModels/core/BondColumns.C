@@ -94,7 +94,8 @@ BondColumnsView BondColumns::view(const KernelAtom* atoms)
         {shearDisplacement_[0].data(), shearDisplacement_[1].data(), shearDisplacement_[2].data()},
         {bendingAngle_[0].data(), bendingAngle_[1].data(), bendingAngle_[2].data()},
         intactNormalForce_.data(), intactShearForce2_.data(), intactTwistTorque2_.data(),
-        intactBendingTorque2_.data()
+        intactBendingTorque2_.data(),
+        nullptr, nullptr, nullptr   // the loads: the caller's
     };
 }
 
