@@ -81,38 +81,6 @@ BondState BondModel::create
 }
 
 
-inline bool BondModel::surelyIntact
-(
-    const BondState& state,
-    const BondStiffness& k,
-    double normalForce,
-    double shearForce2,
-    double twistTorque2,
-    double bendingTorque2
-) const
-{
-    // Below this fraction of a limit, round-off cannot make the exact ratio reach 1.
-    constexpr double margin = 0.99;
-    auto square = [](double x) { return x * x; };
-    const double sigmaT = margin * state.tensileStrength;
-    const double tau = margin * state.shearStrength;
-    if (family_.criterion == BreakageCriterion::separate)
-    {
-        return normalForce < sigmaT * k.area
-            && shearForce2 < square(tau * k.area)
-            && twistTorque2 < square(family_.twistStrengthFactor * tau * k.area15)
-            && bendingTorque2 < square(family_.bendingStrengthFactor * sigmaT * k.area15);
-    }
-    // Combined: sigma + bending stress < sigma_t, and (shear + twist stress)^2,
-    // which is at most twice the sum of their squares, < tau^2.
-    const double tensionReserve = sigmaT - normalForce / k.area;
-    return tensionReserve > 0.0
-        && bendingTorque2 * square(k.bondRadius / k.inertia) < square(tensionReserve)
-        && 2.0 * (shearForce2 / square(k.area) + twistTorque2 * square(k.bondRadius / k.polarInertia))
-           < square(tau);
-}
-
-
 BreakMode BondModel::breakage
 (
     const BondState& state,
@@ -441,20 +409,8 @@ void BondModel::evaluateLanes
         load.centre = get(centre, l);
         load.length = length.v[l];
         load.direction = get(n, l);
-        load.broke = BreakMode::none;
-        if
-        (
-            !family_.unbreakable
-         && !surelyIntact(s, *stiffnesses[l], springNormalForce.v[l], shear2.v[l], twist2.v[l], bending2.v[l])
-        )
-        {
-            // The limits apply to the spring loads, before any viscous damping.
-            load.broke = breakage
-            (
-                s, *stiffnesses[l], springNormalForce.v[l],
-                std::sqrt(shear2.v[l]), std::sqrt(twist2.v[l]), std::sqrt(bending2.v[l])
-            );
-        }
+        // The limits apply to the spring loads, before any viscous damping.
+        load.broke = breakMode(s, *stiffnesses[l], springNormalForce.v[l], shear2.v[l], twist2.v[l], bending2.v[l]);
         if (load.broke != BreakMode::none)
         {
             load.normalForce = 0.0;
@@ -466,21 +422,6 @@ void BondModel::evaluateLanes
         load.torqueOnA = get(torqueOnA, l);
         load.torqueOnB = get(torqueOnB, l);
     }
-}
-
-
-void BondModel::evaluateBatch
-(
-    int count,
-    BondState* const states[],
-    const BondStiffness* const stiffnesses[],
-    const ParticleState* const a[],
-    const ParticleState* const b[],
-    double dt,
-    BondLoad loads[]
-) const
-{
-    evaluateLanes<batchSize>(count, states, stiffnesses, a, b, dt, loads);
 }
 
 

@@ -194,7 +194,7 @@ void IceBondForces::syncTable()
         {
             continue;   // already gone from the table
         }
-        const BondState& state = list_[k].state;
+        const BondState state = listedState(k);
         for (const auto& [own, other, atom] :
             {std::tuple(state.tagA, state.tagB, atomOf_[list_[k].a]),
              std::tuple(state.tagB, state.tagA, atomOf_[list_[k].b])})
@@ -297,9 +297,17 @@ void IceBondForces::rebuildList()
         return std::tie(x.a, x.b) < std::tie(y.a, y.b);
     });
     intact_.assign(list_.size(), 1);
-    pairLoads_.resize(list_.size());
+    columns_.resize(list_.size());
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        const ListedBond& bond = list_[k];
+        const BondStiffness& stiffness = stiffnesses_[bond.stiffness];
+        const BondModel& model = models_[static_cast<int>(bond.state.family)];
+        columns_.set(k, bond.a, bond.b, bond.state, stiffness, model.intactBounds(bond.state, stiffness));
+    }
+    columns_.pad();
 
-    // Each local atom's bonds, by partner tag.
+    // Each local atom's load slots, by partner tag.
     const int entries = static_cast<int>(atomOf_.size());
     firstOfAtom_.assign(entries + 1, 0);
     for (const ListedBond& bond : list_)
@@ -316,29 +324,39 @@ void IceBondForces::rebuildList()
     {
         firstOfAtom_[e + 1] += firstOfAtom_[e];
     }
-    atomBonds_.resize(firstOfAtom_[entries]);
+    std::vector<int> atomBonds(firstOfAtom_[entries]);   // 2 * listed bond (+1 where the atom is b)
     std::vector<int> next(firstOfAtom_.begin(), firstOfAtom_.end() - 1);
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
         const ListedBond& bond = list_[k];
         if (atomOf_[bond.a] < nlocal)
         {
-            atomBonds_[next[bond.a]++] = 2 * static_cast<int>(k);
+            atomBonds[next[bond.a]++] = 2 * static_cast<int>(k);
         }
         if (atomOf_[bond.b] < nlocal)
         {
-            atomBonds_[next[bond.b]++] = 2 * static_cast<int>(k) + 1;
+            atomBonds[next[bond.b]++] = 2 * static_cast<int>(k) + 1;
         }
     }
-    auto partnerTag = [&](int entry)
+    auto partnerTag = [&](int end)
     {
-        const BondState& s = list_[entry / 2].state;
-        return entry % 2 ? s.tagA : s.tagB;
+        const BondState& s = list_[end / 2].state;
+        return end % 2 ? s.tagA : s.tagB;
     };
     for (int e = 0; e < entries; ++e)
     {
-        std::sort(atomBonds_.begin() + firstOfAtom_[e], atomBonds_.begin() + firstOfAtom_[e + 1],
+        std::sort(atomBonds.begin() + firstOfAtom_[e], atomBonds.begin() + firstOfAtom_[e + 1],
             [&](int x, int y) { return partnerTag(x) < partnerTag(y); });
+    }
+    const int unsummed = firstOfAtom_[entries];   // the slot of ghosts' and padding's ends
+    slots_.resize(unsummed + 1);
+    const std::size_t padded = (list_.size() + bondKernelLanes - 1) / bondKernelLanes * bondKernelLanes;
+    slotOfA_.assign(padded, unsummed);
+    slotOfB_.assign(padded, unsummed);
+    for (int n = 0; n < unsummed; ++n)
+    {
+        const int end = atomBonds[n];
+        (end % 2 ? slotOfB_ : slotOfA_)[end / 2] = n;
     }
     lastA_.resize(entries);
     for (int e = 0, last = 0; e < entries; ++e)
@@ -346,7 +364,7 @@ void IceBondForces::rebuildList()
         last = std::max(last, e);
         for (int n = firstOfAtom_[e]; n < firstOfAtom_[e + 1]; ++n)
         {
-            last = std::max(last, list_[atomBonds_[n] / 2].a);
+            last = std::max(last, list_[atomBonds[n] / 2].a);
         }
         lastA_[e] = last;
     }
@@ -354,6 +372,14 @@ void IceBondForces::rebuildList()
     listedLocal_ = nlocal;
     listedGhost_ = atom.nghost;
 }
+
+BondState IceBondForces::listedState(std::size_t bond) const
+{
+    BondState state = list_[bond].state;
+    columns_.copyHistory(bond, state);
+    return state;
+}
+
 
 void IceBondForces::removeFromTable(int atom, long partnerTag)
 {
@@ -396,7 +422,7 @@ std::vector<BondState> IceBondForces::localBondStates() const
     {
         if (intact_[k] && atomOf_[list_[k].a] < nlocal)
         {
-            states.push_back(list_[k].state);
+            states.push_back(listedState(k));
         }
     }
     std::sort(states.begin(), states.end(), [](const BondState& x, const BondState& y)
@@ -515,39 +541,59 @@ void IceBondForces::compute()
         }
     };
     constexpr int sumEvery = 64;   // entries of a between sums
+    constexpr std::size_t prefetchAhead = 2 * bondKernelLanes;
     int steppedBelow = 0;          // every bond with a below this is stepped
-    Batch batch;
-    for (std::size_t k = 0; k < list_.size(); ++k)
+    const std::size_t bonds = list_.size();
+    BondColumnsView columns = columns_.view(particles_.data());
+    columns.loads = slots_.data();
+    columns.loadOfA = slotOfA_.data();
+    columns.loadOfB = slotOfB_.data();
+    const BondKernelSettings settings = kernelSettings();
+    BondKernelResult result;
+    for (std::size_t first = 0; first < bonds; first += bondKernelLanes)
     {
-        const ListedBond& bond = list_[k];
-        if (bond.a >= steppedBelow + sumEvery)
+        const std::size_t end = std::min(first + bondKernelLanes, bonds);
+        if (columns.a[first] >= steppedBelow + sumEvery)
         {
-            evaluate(batch);
-            steppedBelow = bond.a;
+            steppedBelow = columns.a[first];
             sumBelow(steppedBelow);
         }
-        if (!intact_[k])
+        // Broken bonds are stepped too (it is cheaper than leaving them out),
+        // and their results dropped.
+        int lastAtom = 0;
+        for (std::size_t k = first; k < end; ++k)
         {
-            continue;
+            lastAtom = std::max({lastAtom, columns.a[k], columns.b[k]});
         }
-        gatherUpTo(std::max(bond.a, bond.b));
-        if (batch.size > 0 && bond.state.family != batch.states[0]->family)
+        gatherUpTo(lastAtom);
+        prefetchBEnds(columns, std::min(first + prefetchAhead, bonds), std::min(end + prefetchAhead, bonds));
+        const int mayBreak = kernel_(columns, settings, first, result);
+        for (std::size_t k = first; mayBreak && k < end; ++k)
         {
-            evaluate(batch);
-        }
-        const int l = batch.size++;
-        batch.bonds[l] = k;
-        batch.states[l] = &list_[k].state;
-        batch.stiffnesses[l] = &stiffnesses_[bond.stiffness];
-        batch.a[l] = &particles_[bond.a];
-        batch.b[l] = &particles_[bond.b];
-        if (batch.size == BondModel::batchSize)
-        {
-            evaluate(batch);
+            const int lane = static_cast<int>(k - first);
+            if ((mayBreak >> lane & 1) && intact_[k])
+            {
+                breakIfOverLimit(k, result, lane);
+            }
         }
     }
-    evaluate(batch);
     sumBelow(entries);
+}
+
+
+void IceBondForces::prefetchBEnds(const BondColumnsView& columns, std::size_t first, std::size_t end) const
+{
+    // A bond's b atom, and so its slot, can lie far from its a in the atom
+    // order: ask for them before the kernel needs them.
+    for (std::size_t k = first; k < end; ++k)
+    {
+        const char* atom = reinterpret_cast<const char*>(&particles_[columns.b[k]]);
+        const char* slot = reinterpret_cast<const char*>(&slots_[slotOfB_[k]]);
+        __builtin_prefetch(atom);
+        __builtin_prefetch(atom + sizeof(KernelAtom) - 1);
+        __builtin_prefetch(slot, 1);
+        __builtin_prefetch(slot + sizeof(BondEndLoad) - 1, 1);
+    }
 }
 
 
@@ -555,7 +601,7 @@ void IceBondForces::gather(int entry)
 {
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     const int i = atomOf_[entry];
-    ParticleState& p = particles_[entry];
+    KernelAtom& p = particles_[entry];
     for (int c = 0; c < 3; ++c)
     {
         p.position[c] = atom.x[i][c];
@@ -565,51 +611,52 @@ void IceBondForces::gather(int entry)
 }
 
 
-void IceBondForces::evaluate(Batch& batch)
+BondKernelSettings IceBondForces::kernelSettings() const
 {
-    if (batch.size == 0)
-    {
-        return;
-    }
-    const int nlocal = lmp_.engine().atom->nlocal;
-    BondLoad* const loads = batch.loads;
-    models_[static_cast<int>(batch.states[0]->family)].evaluateBatch
+    BondKernelSettings settings;
+    settings.dt = lmp_.timeStep();
+    settings.viscous = ice_.damping.model == DampingModel::viscous && ice_.damping.dampingRatio > 0.0;
+    settings.dampingRatio = ice_.damping.dampingRatio;
+    settings.contactNormalStiffness = contactNormalStiffness_;
+    return settings;
+}
+
+
+void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& result, int l)
+{
+    const ListedBond& bond = list_[k];
+    const BondState& state = bond.state;   // its tags, family and strengths
+    const BreakMode broke = models_[static_cast<int>(state.family)].breakMode
     (
-        batch.size, batch.states, batch.stiffnesses, batch.a, batch.b, lmp_.timeStep(), loads
+        state, stiffnesses_[bond.stiffness], result.springNormalForce[l],
+        result.shearForce2[l], result.twistTorque2[l], result.bendingTorque2[l]
     );
-    for (int l = 0; l < batch.size; ++l)
+    if (broke != BreakMode::none)
     {
-        const std::size_t k = batch.bonds[l];
-        const BondState& state = list_[k].state;
-        const BondLoad& load = loads[l];
-        if (load.broke != BreakMode::none)
+        const int nlocal = lmp_.engine().atom->nlocal;
+        const int a = atomOf_[bond.a];
+        const int b = atomOf_[bond.b];
+        if (a < nlocal)
         {
-            const int a = atomOf_[list_[k].a];
-            const int b = atomOf_[list_[k].b];
-            if (a < nlocal)
-            {
-                breaks_.push_back({lmp_.time(), load.centre, state.tagA, state.tagB, state.family, load.broke});
-                removeFromTable(a, state.tagB);
-            }
-            if (b < nlocal)
-            {
-                removeFromTable(b, state.tagA);
-            }
-            intact_[k] = 0;
-            continue;
+            const Vec3 centre(result.centre[0][l], result.centre[1][l], result.centre[2][l]);
+            breaks_.push_back({lmp_.time(), centre, state.tagA, state.tagB, state.family, broke});
+            removeFromTable(a, state.tagB);
         }
-        PairLoad& out = pairLoads_[k];
-        out.forceOnA = load.forceOnA;
-        const double overlap = batch.a[l]->radius + batch.b[l]->radius - load.length;
-        if (overlap > 0.0)
+        if (b < nlocal)
         {
-            // Cancel the contact's normal spring: a bonded pair has the bond only.
-            out.forceOnA += contactNormalStiffness_ * overlap * load.direction;
+            removeFromTable(b, state.tagA);
         }
-        out.torqueOnA = load.torqueOnA;
-        out.torqueOnB = load.torqueOnB;
+        intact_[k] = 0;
+        // Adding -0 leaves every sum as it is, even a sum of -0. From now on
+        // the kernel writes the bond's loads where nobody sums them.
+        const BondEndLoad none{{-0.0, -0.0, -0.0}, {-0.0, -0.0, -0.0}};
+        const int unsummed = static_cast<int>(slots_.size()) - 1;
+        for (std::vector<int>* slotOf : {&slotOfA_, &slotOfB_})
+        {
+            slots_[(*slotOf)[k]] = none;
+            (*slotOf)[k] = unsummed;
+        }
     }
-    batch.size = 0;
 }
 
 
@@ -625,21 +672,11 @@ void IceBondForces::sumLoads(int entry)
     Vec3 moment = row(atom.torque, i);
     for (int n = firstOfAtom_[entry]; n < firstOfAtom_[entry + 1]; ++n)
     {
-        const int bondEnd = atomBonds_[n];
-        const int k = bondEnd / 2;
-        if (!intact_[k])
-        {
-            continue;
-        }
-        // Branch-free: whether the atom is the bond's a or b is random.
-        const PairLoad& load = pairLoads_[k];
-        const int isB = bondEnd % 2;
-        const double sign = 1 - 2 * isB;
-        const Vec3& bondMoment = isB ? load.torqueOnB : load.torqueOnA;
+        const BondEndLoad& slot = slots_[n];
         for (int c = 0; c < 3; ++c)
         {
-            force[c] += sign * load.forceOnA[c];
-            moment[c] += bondMoment[c];
+            force[c] += slot.force[c];
+            moment[c] += slot.moment[c];
         }
     }
 
@@ -652,8 +689,12 @@ void IceBondForces::sumLoads(int entry)
     }
     else if (ice_.damping.model == DampingModel::hysteretic && ice_.damping.alpha > 0.0)
     {
-        applyHystereticDamping(force, particles_[entry].velocity, ice_.damping.alpha);
-        applyHystereticDamping(moment, particles_[entry].angularVelocity, ice_.damping.alpha);
+        const KernelAtom& p = particles_[entry];
+        applyHystereticDamping(force, Vec3(p.velocity[0], p.velocity[1], p.velocity[2]), ice_.damping.alpha);
+        applyHystereticDamping
+        (
+            moment, Vec3(p.angularVelocity[0], p.angularVelocity[1], p.angularVelocity[2]), ice_.damping.alpha
+        );
     }
     for (int c = 0; c < 3; ++c)
     {
@@ -695,7 +736,7 @@ double IceBondForces::localBondEnergy() const
             if (intact_[k] && a < atom.nlocal)
             {
                 energy += models_[static_cast<int>(bond.state.family)]
-                    .potentialEnergy(bond.state, particle(a), particle(atomOf_[bond.b]));
+                    .potentialEnergy(listedState(k), particle(a), particle(atomOf_[bond.b]));
             }
         }
         return energy;
