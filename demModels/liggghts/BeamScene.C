@@ -364,6 +364,16 @@ void BeamScene::writeSummary(double wallSeconds) const
     }
     double peak = 0.0;
     for (double f : force) peak = std::max(peak, f);
+    if (!(peak > 0.0))
+    {
+        throw RunError
+        (
+            "the platen never touched the beam in " + std::to_string(loopSteps)
+          + " loading steps (travel " + std::to_string(travel.empty() ? 0.0 : travel.back())
+          + " m): no force curve to analyse and no summary.json; run more steps (-steps) or reduce"
+            " platen.initialGap"
+        );
+    }
     const double onset = contactOnset(travel, force, 0.01 * peak);
     std::vector<double> displacement;
     for (double t : travel) displacement.push_back(t - onset);
