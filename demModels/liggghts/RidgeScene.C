@@ -540,6 +540,8 @@ void RidgeScene::assemble()
         ridge.write(path("DEM/ridge.h5"));
         writeGeometry(geometry, ridge.particles);
     }
+    // The load stage reads ridge.h5 on every rank next (-stage all).
+    MPI_Barrier(comm_);
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
         << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "

@@ -153,7 +153,8 @@ int main(int argc, char *argv[])
                 << " s move the platen " << couplingSteps*lmp.timeStep()*settings.loading.speed*1e3
                 << " mm, more than the force's sampleInterval " << settings.loading.sampleInterval*1e3
                 << " mm (system/loadingDict): the force is sampled after whole coupling steps;"
-                << " use at most " << label(sampleSteps) << " DEM steps" << exit(FatalIOError);
+                << " use at most " << label(1.5*sampleSteps) << " DEM steps (one and a half samples)"
+                << exit(FatalIOError);
         }
 
         const scalar meshTop = mesh.bounds().max().z();
