@@ -3,14 +3,19 @@
 
 Writes to CASE/postProcessing/, each file atomically:
   punch.png        total platen force, its buoyancy share (rho_w g times the rise of the ice's
-                   submerged volume) and force minus buoyancy share, against platen travel;
+                   submerged volume) and force minus buoyancy share, against platen travel
+                   (hydrostatic runs);
+  punchWater_<keel>.png  the same keel at the hydrostatic and the cfd level (runs <keel> and
+                   <keel>-cfd, ./Allrun -water cfd): force and buoyancy share;
   breakage.png     broken bonds against time by mode, one panel per keel;
   maps.png         the failure analysis's maps (runs/<keel>/postProcessing/failureAnalysis/
                    moment_*.png) at half load before the peak, the peak and half load after it;
-  punchSummary.csv one row per run: peak force, buoyancy share at the peak, broken bonds by mode
-                   and family, wall time, particle-steps/s.
+  punchSummary.csv one row per run: water level, peak force, buoyancy share at the peak, mean
+                   force and buoyancy share over 20-100 mm, force and share (means over +-5 mm)
+                   at 50, 80 and 100 mm, broken bonds by mode and family, wall time,
+                   particle-steps/s.
 
-usage: plotPunch.py CASE [--runs cuboid empirical]"""
+usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd]"""
 import argparse
 import csv
 import io
@@ -40,6 +45,27 @@ def columns(path):
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
+def water_level(run):
+    return summary(run).get("water", "hydrostatic")
+
+
+def plot_water_levels(keel, runs, out):
+    """One keel at both water levels: force and buoyancy share against travel."""
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for colour, (level, run) in zip(("tab:blue", "tab:red"), runs.items()):
+        c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
+        mm = c["travel"] * 1e3
+        ax.plot(mm, c["force"], color=colour, lw=1.0, label=f"{level}: total platen force")
+        ax.plot(mm, c["buoyancyShare"], color=colour, ls="--", lw=1.5, label=f"{level}: buoyancy share")
+    ax.axhline(0, color="grey", lw=0.5)
+    ax.set_xlabel("platen travel (mm)")
+    ax.set_ylabel("force (N)")
+    ax.set_title(f"Rubble punch, {keel} keel: hydrostatic and cfd water")
+    ax.legend(fontsize=8)
+    save_atomically(fig, out)
+    plt.close(fig)
+
+
 def plot_forces(runs, out):
     fig, ax = plt.subplots(figsize=(8, 5))
     for colour, (name, run) in zip(("tab:blue", "tab:orange", "tab:green", "tab:red"), runs.items()):
@@ -53,7 +79,7 @@ def plot_forces(runs, out):
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("platen travel (mm)")
     ax.set_ylabel("force (kN)")
-    ax.set_title("Rubble punch: platen force and its buoyancy share (hydrostatic water)")
+    ax.set_title("Rubble punch: platen force and its buoyancy share")
     ax.legend(fontsize=8)
     save_atomically(fig, out)
     plt.close(fig)
@@ -102,14 +128,32 @@ def table_text(rows):
     return text.getvalue()
 
 
+def curve_figures(run):
+    """Means over 20-100 mm of travel, and means over +-5 mm at 50, 80, 100 mm (the last: 95-100)."""
+    c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
+    mm = c["travel"] * 1e3
+    figures = {}
+
+    def mean(name, lo, hi):
+        inside = (mm >= lo) & (mm <= hi)
+        return round(float(c[name][inside].mean()), 1) if inside.any() else float("nan")
+    figures["mean_force_20_100mm_N"] = mean("force", 20, 100)
+    figures["mean_share_20_100mm_N"] = mean("buoyancyShare", 20, 100)
+    for at in (50, 80, 100):
+        figures[f"force_{at}mm_N"] = mean("force", at - 5, at + 5)
+        figures[f"share_{at}mm_N"] = mean("buoyancyShare", at - 5, at + 5)
+    return figures
+
+
 def summary_row(name, run):
     s = summary(run)
-    return {"run": name, "platen_speed_m_per_s": s["platen_speed_m_per_s"],
+    return {"run": name, "water": water_level(run), "platen_speed_m_per_s": s["platen_speed_m_per_s"],
             "peak_force_N": round(s["peak_force_N"], 1),
             "travel_at_peak_mm": round(s["travel_at_peak_m"] * 1e3, 2),
             "buoyancy_share_at_peak_N": round(s["buoyancy_share_at_peak_N"], 1),
             "buoyancy_share_fraction": round(s["buoyancy_share_at_peak_N"] / s["peak_force_N"], 3),
             "peak_without_buoyancy_N": round(s["peak_force_without_buoyancy_N"], 1),
+            **curve_figures(run),
             "broken_bonds": s["broken_bonds"],
             **{f"broken_{m}": s["broken_by_mode"][m] for m in MODES.values()},
             **{f"broken_{f}": n for f, n in s["broken_by_family"].items()},
@@ -128,7 +172,14 @@ def main(argv=None):
             if os.path.exists(os.path.join(a.case, "runs", name, "postProcessing", "summary.json"))}
     if not runs:
         sys.exit(f"plotPunch.py: no finished run among {a.runs} in {a.case}/runs")
-    plot_forces(runs, os.path.join(out, "punch.png"))
+    hydrostatic = {name: run for name, run in runs.items() if water_level(run) == "hydrostatic"}
+    if hydrostatic:
+        plot_forces(hydrostatic, os.path.join(out, "punch.png"))
+    for name, run in runs.items():
+        if water_level(run) == "cfd" and name.endswith("-cfd") and name[:-4] in hydrostatic:
+            keel = name[:-4]
+            plot_water_levels(keel, {"hydrostatic": hydrostatic[keel], "cfd": run},
+                              os.path.join(out, f"punchWater_{keel}.png"))
     plot_breakage(runs, os.path.join(out, "breakage.png"))
     plot_maps(runs, os.path.join(out, "maps.png"))
     rows = [summary_row(name, run) for name, run in runs.items()]

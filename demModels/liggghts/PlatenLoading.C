@@ -18,6 +18,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace iceDEM
 {
@@ -224,13 +225,19 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     LoadingState& st = state_;
     const double speed = control_.speed;
     const double dt = st.dt;
-    const long stepsPerSample = std::max(1L, std::lround(control_.sampleInterval / (speed * dt)));
+    const long stepsPerSample = hooks.advance
+        ? stepsPerSampleInWholeAdvances(hooks.stepsPerAdvance)
+        : std::max(1L, std::lround(control_.sampleInterval / (speed * dt)));
     const long samplesPerFrame = std::max(1L, std::lround(control_.writeInterval / control_.sampleInterval));
     const long samplesPerCheckpoint =
         std::max(1L, std::lround(control_.checkpointInterval / control_.sampleInterval));
-    const long maxSteps = control_.fixedSteps > 0
+    long maxSteps = control_.fixedSteps > 0
         ? control_.fixedSteps
         : std::lround((control_.maxTravel + control_.initialGap + control_.rampTravel) / (speed * dt));
+    if (hooks.advance)
+    {
+        maxSteps = (maxSteps + stepsPerSample - 1) / stepsPerSample * stepsPerSample;
+    }
 
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
@@ -250,7 +257,14 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     while (st.steps < maxSteps)
     {
         const long chunk = std::min(stepsPerSample, maxSteps - st.steps);
-        lmp.command("run " + std::to_string(chunk) + " pre no post no");
+        if (hooks.advance)
+        {
+            hooks.advance(chunk);
+        }
+        else
+        {
+            lmp.command("run " + std::to_string(chunk) + " pre no post no");
+        }
         st.steps += chunk;
         ++st.sample;
         sample(lmp, bonds, hooks, chunk);
@@ -302,6 +316,17 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     }
     loopSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
     writeFrame(lmp, bonds);
+}
+
+
+long PlatenLoading::stepsPerSampleInWholeAdvances(long stepsPerAdvance) const
+{
+    if (stepsPerAdvance < 1)
+    {
+        throw std::logic_error("PlatenLoading: stepsPerAdvance must be at least 1");
+    }
+    const double exact = control_.sampleInterval / (control_.speed * state_.dt);
+    return std::max(1L, std::lround(exact / stepsPerAdvance)) * stepsPerAdvance;
 }
 
 

@@ -86,7 +86,19 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
         else if (arg == "-resume") s.resume = true;
         else throw InputError("command line", arg, "unknown option or missing value; " + usage);
     }
+    // At the cfd level system/controlDict is OpenFOAM's (icePunchFoam).
+    const bool cfd = WaterProperties::readCase(s.caseDir, true).level == WaterLevel::cfd;
+    RidgeSettings fromCase = readCase(s.caseDir, cfd ? "system/loadingDict" : "system/controlDict");
+    fromCase.stage = s.stage;
+    fromCase.resume = s.resume;
+    return fromCase;
+}
 
+
+RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::string& controlFile)
+{
+    RidgeSettings s;
+    s.caseDir = caseDir;
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/ridgeProperties");
     d.checkKeys({"keel", "box", "consolidatedLayer", "assembly", "ends", "test"});
 
@@ -168,7 +180,7 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
                "consolidatedLayer.thickness must be positive");
     }
 
-    const Dictionary control = Dictionary::readFile(s.caseDir + "/system/controlDict");
+    const Dictionary control = Dictionary::readFile(s.caseDir + "/" + controlFile);
     control.checkKeys
     ({
         "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
@@ -179,10 +191,11 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
 }
 
 
-RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings)
+RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const ExternalWater* externalWater)
 :
     comm_(comm),
-    settings_(settings)
+    settings_(settings),
+    externalWater_(externalWater)
 {
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &ranks_);
@@ -196,10 +209,30 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings)
             "that heatBalance needs are not kept with the settled keel");
     }
     water_ = WaterProperties::readCase(settings_.caseDir, true);
-    if (water_.level != WaterLevel::hydrostatic)
+    const bool loads = settings_.stage == "load" || settings_.stage == "all";
+    if (externalWater_ && water_.level != WaterLevel::cfd)
     {
         throw InputError(path("constant/couplingProperties"), "waterLevel",
-            "ridgeDEM runs in still water: allowed here: hydrostatic (cfd: see coupling/README.md)");
+            "'" + toString(water_.level) + "': icePunchFoam solves the water of the loading stage; "
+            "allowed here: cfd (hydrostatic: ridgeDEM)");
+    }
+    if (!externalWater_ && water_.level == WaterLevel::cfd && loads)
+    {
+        throw InputError(path("constant/couplingProperties"), "waterLevel",
+            "cfd: ridgeDEM loads in still (hydrostatic) water and only assembles at the cfd level "
+            "(-stage assemble); the loading stage at the cfd level runs in icePunchFoam "
+            "(cases/rubblePunch: ./Allrun -water cfd)");
+    }
+    if (!externalWater_ && water_.level != WaterLevel::hydrostatic && water_.level != WaterLevel::cfd)
+    {
+        throw InputError(path("constant/couplingProperties"), "waterLevel",
+            "ridgeDEM runs in still water: allowed here: hydrostatic (cfd: icePunchFoam, see coupling/README.md)");
+    }
+    if (water_.level == WaterLevel::cfd && !water_.hydrostatic.floatingSurface && settings_.stage != "load")
+    {
+        throw InputError(path("constant/couplingProperties"), "hydrostatic",
+            "at the cfd level the ridge is still assembled in still water where it floats: needs "
+            "hydrostatic { surfaceLevel floating; rho; mu; } (the fluid mesh ends at that level)");
     }
 }
 
@@ -507,6 +540,8 @@ void RidgeScene::assemble()
         ridge.write(path("DEM/ridge.h5"));
         writeGeometry(geometry, ridge.particles);
     }
+    // The load stage reads ridge.h5 on every rank next (-stage all).
+    MPI_Barrier(comm_);
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
         << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
@@ -594,6 +629,48 @@ std::vector<double> RidgeScene::waterColumns()
 }
 
 
+std::vector<double> RidgeScene::externalWaterColumns()
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    const double level = stillSurface_->parameters().surfaceLevel;
+    double local = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        local += submergedSphereVolume(atom.radius[i], level - (atom.x[i][2] - atom.radius[i]));
+    }
+    const double submerged = sumOverRanks(comm_, local);
+    if (submergedAtStart_ < 0.0)
+    {
+        submergedAtStart_ = submerged;
+    }
+    const HydrostaticWater& water = *stillSurface_;
+    const double bottom = platenBottom_ - settings_.loading.travelAt(lmp_->time() - loading_->state().startTime);
+    const double platenBuoyancy = settings_.test == RidgeTest::flexure
+        ? water.buoyancy(water.submergedPrismVolume(
+              settings_.platenLength * (settings_.layer.width + 2.0 * platenOverhang), bottom, bottom + settings_.platenHeight))
+        : 0.0;
+    std::vector<double> columns
+    {
+        water.buoyancy(submerged), submerged, water.buoyancy(submerged - submergedAtStart_), platenBuoyancy
+    };
+    const std::vector<double> own = externalWater_->values();
+    columns.insert(columns.end(), own.begin(), own.end());
+    return columns;
+}
+
+
+void RidgeScene::advance(long steps)
+{
+    if (!externalWater_)
+    {
+        lmp_->command("run " + std::to_string(steps) + " pre no post no");
+        return;
+    }
+    const long chunk = externalWater_->stepsPerAdvance;
+    externalWater_->advance((steps + chunk - 1) / chunk * chunk);
+}
+
+
 void RidgeScene::load()
 {
     const auto wallStart = std::chrono::steady_clock::now();
@@ -633,10 +710,20 @@ void RidgeScene::load()
         }
     }
     chooseContactsAndStep(particles, ice_);
+    std::vector<std::string> waterColumnNames{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"};
+    if (externalWater_)
+    {
+        if (settings_.resume)
+        {
+            throw InputError("command line", "-resume", "a checkpoint holds the DEM only, not the "
+                + externalWater_->name + " water: a run at that level starts again");
+        }
+        waterColumnNames.insert(waterColumnNames.end(), externalWater_->columns.begin(), externalWater_->columns.end());
+    }
     loading_ = std::make_unique<PlatenLoading>
     (
-        comm_, settings_.caseDir, "ridgeDEM", settings_.loading, dt_, particleCount_, fixedType,
-        std::vector<std::string>{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"}
+        comm_, settings_.caseDir, externalWater_ ? "icePunchFoam" : "ridgeDEM", settings_.loading, dt_,
+        particleCount_, fixedType, waterColumnNames
     );
     std::unique_ptr<Checkpoint> checkpoint;
     if (settings_.resume && loading_->checkpointExists())
@@ -674,14 +761,26 @@ void RidgeScene::load()
         lmp_->command("fix platenWall all wall/gran model hooke/stiffness tangential history rolling_friction epsd2 "
                       "mesh n_meshes 1 meshes platen absolute_damping on");
     }
-    HydrostaticWaterParameters waterParameters = water_.hydrostatic;
-    waterParameters.surfaceLevel = ridge.waterLevel;
-    waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
-    waterForces_->defineForceFix();
+    if (externalWater_)
+    {
+        HydrostaticWaterParameters surface;
+        surface.surfaceLevel = ridge.waterLevel;
+        surface.density = externalWater_->density;
+        surface.gravity = water_.gravity.norm();
+        stillSurface_ = std::make_unique<HydrostaticWater>(surface);
+        externalWater_->defineForceFix(*lmp_, ridge.waterLevel);
+    }
+    else
+    {
+        HydrostaticWaterParameters waterParameters = water_.hydrostatic;
+        waterParameters.surfaceLevel = ridge.waterLevel;
+        waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
+        waterForces_->defineForceFix();
+    }
     bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
-    if (settings_.test == RidgeTest::flexure)
+    if (settings_.test == RidgeTest::flexure && waterForces_)
     {
         // Not in the keel-bond tests: nothing is integrated there, and the fix
         // would scale the layer's forces that testForce() sums by m / (m + m_a).
@@ -707,7 +806,7 @@ void RidgeScene::load()
         // a load: no bond breaks meanwhile; one overloaded at rest breaks at
         // the first step of the test.
         bonds_->suspendBreakage(true);
-        lmp_->command("run " + std::to_string(settleSteps) + " pre no post no");
+        advance(settleSteps);
         bonds_->suspendBreakage(false);
         log("Settled under gravity and buoyancy for " + number(settings_.settleTime) + " s: kinetic energy "
             + number(totalKineticEnergy(*lmp_)) + " J");
@@ -744,7 +843,12 @@ void RidgeScene::load()
 
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
-    hooks.extras = [this] { return waterColumns(); };
+    hooks.extras = [this] { return externalWater_ ? externalWaterColumns() : waterColumns(); };
+    if (externalWater_)
+    {
+        hooks.advance = externalWater_->advance;
+        hooks.stepsPerAdvance = externalWater_->stepsPerAdvance;
+    }
     loading_->run(*lmp_, *bonds_, hooks);
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
@@ -797,6 +901,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
 
     JsonObject j;
     j.add("case", "ridge").add("test", toString(settings_.test))
+     .add("water", externalWater_ ? externalWater_->name : toString(water_.level))
      .add("consolidated_layer_m", settings_.layer.thickness)
      .add("keel_thickness_m", g.keelTop - g.keelBottom)
      .add("depth_m", D)

@@ -109,6 +109,12 @@ def punch(work, bin_dir):
     check(overlaps["touchingPairs"] > 0 and overlaps["max"] < 1e-4 * diameter,
           f"blocks bonded at the ice's overlaps: {overlaps['touchingPairs']} touching pairs, largest "
           f"overlap {overlaps['max'] * 1e6:.3g} um (limit 1e-4 D = {1e-4 * diameter * 1e6:.3g} um)")
+    check_buoyancy_share(case, level)
+
+
+def check_buoyancy_share(case, level):
+    """(a) The program's buoyancy share against rho_w g times the change of sum V_cap below `level`
+    that this script computes from the VTK frames that coincide with force samples."""
     c = iceCases.curve(case)
     frames = pvd_frames(os.path.join(case, "VTK", "particles.pvd"))
     rows = []

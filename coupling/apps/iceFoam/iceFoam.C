@@ -51,6 +51,7 @@ Description
 #include "LiggghtsInstance.H"
 #include "DemCoupling.H"
 #include "BondedIce.H"
+#include "MpiForSerialRun.H"
 
 #include <mpi.h>
 
@@ -61,31 +62,6 @@ using namespace Foam::iceCoupling;
 
 namespace
 {
-
-//- OpenFOAM starts MPI only for -parallel runs; LIGGGHTS needs it always.
-struct MpiForSerialRun
-{
-    bool started = false;
-    MpiForSerialRun()
-    {
-        int initialised = 0;
-        MPI_Initialized(&initialised);
-        if (!initialised)
-        {
-            MPI_Init(nullptr, nullptr);
-            started = true;
-        }
-    }
-    ~MpiForSerialRun()
-    {
-        int finalised = 0;
-        MPI_Finalized(&finalised);
-        if (started && !finalised)
-        {
-            MPI_Finalize();
-        }
-    }
-};
 
 #include "particleOutput.H"
 
@@ -118,7 +94,7 @@ int main(int argc, char *argv[])
     #include "createTime.H"
     #include "createMesh.H"
 
-    MpiForSerialRun mpi;
+    ::iceCoupling::MpiForSerialRun mpi;
     pisoControl piso(mesh);
 
     #include "createFields.H"
