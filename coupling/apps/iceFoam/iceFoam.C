@@ -52,6 +52,7 @@ Description
 #include "DemCoupling.H"
 #include "BondedIce.H"
 #include "MpiForSerialRun.H"
+#include "demModelsAction.H"
 
 #include <mpi.h>
 
@@ -59,26 +60,12 @@ Description
 #include <memory>
 
 using namespace Foam::iceCoupling;
+using ::iceCoupling::demModelsAction;
 
 namespace
 {
 
 #include "particleOutput.H"
-
-//- Runs a DEM-side action; its input and run errors (iceDEM) stop the run
-//  with their message.
-template<class Action>
-void demModelsAction(const Action& action)
-{
-    try
-    {
-        action();
-    }
-    catch (const std::exception& e)
-    {
-        FatalErrorInFunction << e.what() << exit(FatalError);
-    }
-}
 
 } // namespace
 

@@ -46,6 +46,7 @@ Description
 #include "DemCoupling.H"
 #include "FpeTrapsOff.H"
 #include "MpiForSerialRun.H"
+#include "demModelsAction.H"
 #include "RidgeScene.H"
 
 #include <mpi.h>
@@ -55,26 +56,7 @@ Description
 #include <memory>
 
 using namespace Foam::iceCoupling;
-
-namespace
-{
-
-//- Runs a DEM-side action; its input and run errors (iceDEM) stop the run
-//  with their message.
-template<class Action>
-void demModelsAction(const Action& action)
-{
-    try
-    {
-        action();
-    }
-    catch (const std::exception& e)
-    {
-        FatalErrorInFunction << e.what() << exit(FatalError);
-    }
-}
-
-} // namespace
+using ::iceCoupling::demModelsAction;
 
 
 int main(int argc, char *argv[])
