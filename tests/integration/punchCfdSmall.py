@@ -34,10 +34,11 @@ TRAVEL = 0.005          # m: past the first break (2.8 mm); not below rampTravel
 # travel, before the water's effects can be told apart; these hold for 2.8 mm (30 samples).
 CONTROLS = (("maxTravel", TRAVEL), ("writeInterval", 0.001), ("checkpointInterval", 0.02),
             ("stopAfterHalfLoad", "no"))
-ENTRIES = (("test.settleTime", 0.05), ("ends.fixedLength", 0))
+# The platen speed is the test's own (the case's may change): the bounds below and the refused
+# coupling interval were worked out for 0.05 m/s.
+SPEED = 0.05                        # m/s
+ENTRIES = (("test.settleTime", 0.05), ("ends.fixedLength", 0), ("test.speed", SPEED))
 RAMP = float(iceCases.get_entry(os.path.join(ridgeSmall.CASES, "rubblePunch", "system", "controlDict"), "rampTravel"))
-SPEED = float(iceCases.get_entry(os.path.join(ridgeSmall.CASES, "rubblePunch", "constant", "ridgeProperties"),
-                                 "test.speed"))
 TAU = RAMP / SPEED                  # s: the platen's smooth start (PlatenLoadingControl::travelAt)
 # 1 against 2 ranks: LIGGGHTS sums the frictional contact forces of the rubble in rank order, so
 # the DEM alone differs already: the hydrostatic level on this keel and case by up to 3.3e-4
