@@ -225,9 +225,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     LoadingState& st = state_;
     const double speed = control_.speed;
     const double dt = st.dt;
-    const long stepsPerSample = hooks.advance
-        ? stepsPerSampleInWholeAdvances(hooks.stepsPerAdvance)
-        : std::max(1L, std::lround(control_.sampleInterval / (speed * dt)));
+    const long stepsPerSample = stepsPerSampleInWholeAdvances(hooks.advance ? hooks.stepsPerAdvance : 1);
     const long samplesPerFrame = std::max(1L, std::lround(control_.writeInterval / control_.sampleInterval));
     const long samplesPerCheckpoint =
         std::max(1L, std::lround(control_.checkpointInterval / control_.sampleInterval));

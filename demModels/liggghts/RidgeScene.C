@@ -611,13 +611,34 @@ double RidgeScene::testForce() const
 
 std::vector<double> RidgeScene::waterColumns()
 {
-    const WaterForceTotals totals = waterForces_->totals();
+    // The buoyancy and submerged volume come from the scene's own water
+    // fix, or, where the water is external, from the particles' caps below
+    // the still surface; the buoyancy share is the same in both.
+    const HydrostaticWater& water = waterForces_ ? waterForces_->water() : *stillSurface_;
+    double submerged = 0.0, buoyancy = 0.0;
+    if (waterForces_)
+    {
+        const WaterForceTotals totals = waterForces_->totals();
+        submerged = totals.submergedVolume;
+        buoyancy = totals.buoyancy.z();
+    }
+    else
+    {
+        const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+        const double level = water.parameters().surfaceLevel;
+        double local = 0.0;
+        for (int i = 0; i < atom.nlocal; ++i)
+        {
+            local += submergedSphereVolume(atom.radius[i], level - (atom.x[i][2] - atom.radius[i]));
+        }
+        submerged = sumOverRanks(comm_, local);
+        buoyancy = water.buoyancy(submerged);
+    }
     if (submergedAtStart_ < 0.0)
     {
-        submergedAtStart_ = totals.submergedVolume;
+        submergedAtStart_ = submerged;
     }
-    const HydrostaticWater& water = waterForces_->water();
-    const double share = water.buoyancy(totals.submergedVolume - submergedAtStart_);
+    const double share = water.buoyancy(submerged - submergedAtStart_);
     double platenBuoyancy = 0.0;
     if (settings_.test == RidgeTest::flexure)
     {
@@ -625,36 +646,12 @@ std::vector<double> RidgeScene::waterColumns()
         platenBuoyancy = water.buoyancy(water.submergedPrismVolume(
             settings_.platenLength * (settings_.layer.width + 2.0 * platenOverhang), bottom, bottom + settings_.platenHeight));
     }
-    return {totals.buoyancy.z(), totals.submergedVolume, share, platenBuoyancy};
-}
-
-
-std::vector<double> RidgeScene::externalWaterColumns()
-{
-    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
-    const double level = stillSurface_->parameters().surfaceLevel;
-    double local = 0.0;
-    for (int i = 0; i < atom.nlocal; ++i)
+    std::vector<double> columns{buoyancy, submerged, share, platenBuoyancy};
+    if (externalWater_)
     {
-        local += submergedSphereVolume(atom.radius[i], level - (atom.x[i][2] - atom.radius[i]));
+        const std::vector<double> own = externalWater_->values();
+        columns.insert(columns.end(), own.begin(), own.end());
     }
-    const double submerged = sumOverRanks(comm_, local);
-    if (submergedAtStart_ < 0.0)
-    {
-        submergedAtStart_ = submerged;
-    }
-    const HydrostaticWater& water = *stillSurface_;
-    const double bottom = platenBottom_ - settings_.loading.travelAt(lmp_->time() - loading_->state().startTime);
-    const double platenBuoyancy = settings_.test == RidgeTest::flexure
-        ? water.buoyancy(water.submergedPrismVolume(
-              settings_.platenLength * (settings_.layer.width + 2.0 * platenOverhang), bottom, bottom + settings_.platenHeight))
-        : 0.0;
-    std::vector<double> columns
-    {
-        water.buoyancy(submerged), submerged, water.buoyancy(submerged - submergedAtStart_), platenBuoyancy
-    };
-    const std::vector<double> own = externalWater_->values();
-    columns.insert(columns.end(), own.begin(), own.end());
     return columns;
 }
 
@@ -843,7 +840,7 @@ void RidgeScene::load()
 
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
-    hooks.extras = [this] { return externalWater_ ? externalWaterColumns() : waterColumns(); };
+    hooks.extras = [this] { return waterColumns(); };
     if (externalWater_)
     {
         hooks.advance = externalWater_->advance;
