@@ -108,9 +108,9 @@ BondedIce::BondedIce
     const std::vector<iceDEM::BondPair> pairs = builder.build(specs);
     statistics_ = builder.statistics();
     checkTimeStep(minRadius);
-    const double contactStiffness = defineContacts(diameterSum/specs.size(), minMass, maxRadius);
+    defineContacts(diameterSum/specs.size(), minMass, maxRadius);
 
-    bonds_ = std::make_unique<iceDEM::IceBondForces>(lmp_, ice_, contactStiffness);
+    bonds_ = std::make_unique<iceDEM::IceBondForces>(lmp_, ice_);
     lmp_.command(std::string("fix ") + bondFixId + " all external pf/callback 1 1");
     bonds_->attach(bondFixId);
     const FpeTrapsOff untrapped;
@@ -144,7 +144,7 @@ void BondedIce::checkTimeStep(double minRadius) const
 }
 
 
-double BondedIce::defineContacts(double meanDiameter, double minMass, double maxRadius)
+void BondedIce::defineContacts(double meanDiameter, double minMass, double maxRadius)
 {
     const iceDEM::ContactParameters c = iceDEM::ContactParameters::of(ice_, meanDiameter, minMass);
     const int types = lmp_.engine().atom->ntypes;
@@ -166,7 +166,6 @@ double BondedIce::defineContacts(double meanDiameter, double minMass, double max
     const double skin = lmp_.engine().neighbor->skin;
     lmp_.command("communicate single cutoff " + iceDEM::exactNumber(iceDEM::bondGhostCutoff(ice_, maxRadius, skin))
                  + " vel yes");
-    return c.normalStiffness;
 }
 
 

@@ -66,7 +66,7 @@ std::unique_ptr<IceBondForces> attachIceBonds
     const Checkpoint* resume
 )
 {
-    auto bonds = std::make_unique<IceBondForces>(lmp, ice, body.contact.normalStiffness);
+    auto bonds = std::make_unique<IceBondForces>(lmp, ice);
     lmp.command("fix iceBondForces all external pf/callback 1 1");
     bonds->attach("iceBondForces");
     // LIGGGHTS' set-up of the first run resets property/atom values to their

@@ -181,7 +181,7 @@ void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables&
         throw InputError(scriptPath, "(file)", "the LIGGGHTS input script is missing");
     }
     lmp_->runScript(scriptPath);
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     lmp_->command("run 0");     // property/atom is reset by the first run's set-up

@@ -8,8 +8,14 @@
 #include "atom.h"
 #include "fix.h"
 #include "fix_external.h"
+#include "force.h"
 #include "lammps.h"
+#include "lmptype.h"
 #include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "pair.h"
+#include "update.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,31 +40,58 @@ Vec3 row(double** a, int i)
 } // namespace
 
 
-//- Lets LIGGGHTS tell IceBondForces that it is about to move atoms (between
-//  ranks, or re-sorting them on one) or write a restart file: the moment the
-//  per-atom table must hold every history. LIGGGHTS has no input-script style
-//  for it; IceBondForces::attach puts it in a placeholder fix's place.
-class BondTableSync : public LAMMPS_NS::Fix
+//- IceBondForces' hooks into LIGGGHTS' step, which has no input-script
+//  style for them (IceBondForces::attach puts this fix in a placeholder's
+//  place):
+//  - before LIGGGHTS moves atoms (between ranks, or re-sorting them on one)
+//    or writes a restart file, the per-atom table must hold every history;
+//  - after each neighbour-list build, bonded pairs leave the granular contact
+//    list: a bonded pair interacts through its bond alone (physics.md section 2);
+//  - a bond that broke this step lets its pair back into the contact list by
+//    a rebuild at the next step (requested on every rank alike: a rebuild
+//    moves atoms between ranks).
+class IceBondHooks : public LAMMPS_NS::Fix
 {
 public:
-    BondTableSync(LAMMPS_NS::LAMMPS* engine, char** args, std::shared_ptr<IceBondForces*> target)
+    IceBondHooks(LAMMPS_NS::LAMMPS* engine, char** args, std::shared_ptr<IceBondForces*> target)
     :
         Fix(engine, 3, args),
         target_(std::move(target))
-    {}
+    {
+        force_reneighbor = 1;
+        next_reneighbor = -1;
+    }
 
     void retarget(std::shared_ptr<IceBondForces*> target) { target_ = std::move(target); }
 
-    int setmask() override { return LAMMPS_NS::FixConst::PRE_EXCHANGE; }
-    void setup_pre_exchange() override { sync(); }
-    void pre_exchange() override { sync(); }
+    int setmask() override { return LAMMPS_NS::FixConst::PRE_EXCHANGE | LAMMPS_NS::FixConst::PRE_FORCE; }
+    void setup_pre_exchange() override { syncTable(); }
+    void pre_exchange() override { syncTable(); }
+    void setup_pre_force(int) override { removeBondedPairs(); }
+    void pre_force(int) override
+    {
+        if (neighbor->ago == 0 || (*target_ && (*target_)->contactListIsStale()))
+        {
+            removeBondedPairs();
+        }
+    }
+
+    void rebuildNeighboursAtNextStep() { next_reneighbor = update->ntimestep + 1; }
 
 private:
-    void sync()
+    void syncTable()
     {
         if (*target_)
         {
             (*target_)->syncTable();
+        }
+    }
+
+    void removeBondedPairs()
+    {
+        if (*target_)
+        {
+            (*target_)->removeBondedPairsFromContacts();
         }
     }
 
@@ -77,26 +110,20 @@ std::array<BondModel, nBondFamilies> IceBondForces::modelsOf(const IceProperties
 }
 
 
-IceBondForces::IceBondForces
-(
-    LiggghtsInstance& lmp,
-    const IceProperties& props,
-    double contactNormalStiffness
-)
+IceBondForces::IceBondForces(LiggghtsInstance& lmp, const IceProperties& props)
 :
     lmp_(lmp),
     models_(modelsOf(props)),
     ice_(props),
-    contactNormalStiffness_(contactNormalStiffness),
     table_(lmp, props.maxBondsPerParticle)
 {}
 
 
 IceBondForces::~IceBondForces()
 {
-    if (syncTarget_)
+    if (hooksTarget_)
     {
-        *syncTarget_ = nullptr;
+        *hooksTarget_ = nullptr;
     }
 }
 
@@ -126,6 +153,7 @@ void IceBondForces::createBonds
     {
         store(state);
     }
+    contactListIsStale_ = true;
 }
 
 
@@ -140,6 +168,7 @@ void IceBondForces::restoreBonds(const std::vector<BondState>& states)
     {
         store(state);
     }
+    contactListIsStale_ = true;
 }
 
 
@@ -150,6 +179,7 @@ void IceBondForces::addBonds(const std::vector<BondState>& states)
     {
         store(state);
     }
+    contactListIsStale_ = true;
 }
 
 
@@ -410,6 +440,28 @@ std::vector<BondState> IceBondForces::tableBondStates() const
 }
 
 
+std::vector<BondState> IceBondForces::bondStatesOfLocalAtoms()
+{
+    syncTable();
+    LAMMPS_NS::Atom& atom = *lmp_.engine().atom;   // map() is not const
+    std::vector<BondState> states;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        for (int slot = 0; slot < table_.count(i); ++slot)
+        {
+            const long partner = table_.partner(i, slot);
+            const int partnerAtom = atom.map(static_cast<int>(partner));
+            const bool partnerIsLocal = partnerAtom >= 0 && partnerAtom < atom.nlocal;
+            if (atom.tag[i] < partner || !partnerIsLocal)
+            {
+                states.push_back(table_.read(i, slot, atom.tag[i]));
+            }
+        }
+    }
+    return states;
+}
+
+
 std::vector<BondState> IceBondForces::localBondStates() const
 {
     if (!listIsCurrent_)
@@ -433,7 +485,7 @@ std::vector<BondState> IceBondForces::localBondStates() const
 }
 
 
-void IceBondForces::changeProperties(const IceProperties& props, double contactNormalStiffness)
+void IceBondForces::changeProperties(const IceProperties& props)
 {
     if (props.maxBondsPerParticle != ice_.maxBondsPerParticle)
     {
@@ -442,7 +494,6 @@ void IceBondForces::changeProperties(const IceProperties& props, double contactN
     syncTable();    // the list is rebuilt with the new stiffnesses
     models_ = modelsOf(props);
     ice_ = props;
-    contactNormalStiffness_ = contactNormalStiffness;
 }
 
 
@@ -461,26 +512,87 @@ void IceBondForces::attach(const std::string& fixExternalId)
     fix.set_callback(&IceBondForces::callback, this);
 
     // LIGGGHTS makes fixes only of its own styles: make a placeholder, then
-    // put the synchronising fix in its place before the next run's set-up
-    // reads which fixes want pre_exchange calls.
+    // put the hooks in its place before the next run's set-up reads which
+    // fixes want which calls.
     LAMMPS_NS::LAMMPS& engine = lmp_.engine();
     LAMMPS_NS::Modify& modify = *engine.modify;
-    syncTarget_ = std::make_shared<IceBondForces*>(this);
-    std::string id = std::string(BondTable::fixId) + "Sync";
+    hooksTarget_ = std::make_shared<IceBondForces*>(this);
+    std::string id = std::string(BondTable::fixId) + "Hooks";
     if (const int existing = modify.find_fix(id.c_str()); existing >= 0)
     {
-        static_cast<BondTableSync*>(modify.fix[existing])->retarget(syncTarget_);
+        hooks_ = static_cast<IceBondHooks*>(modify.fix[existing]);
+        hooks_->retarget(hooksTarget_);
         return;
     }
     lmp_.command("fix " + id + " all external pf/callback 1 1");
     const int index = modify.find_fix(id.c_str());
     std::string group = "all";
-    std::string style = "iceBondTableSync";
+    std::string style = "iceBondHooks";
     char* args[] = {id.data(), group.data(), style.data()};
-    auto* sync = new BondTableSync(&engine, args, syncTarget_);
+    hooks_ = new IceBondHooks(&engine, args, hooksTarget_);
     delete modify.fix[index];
-    modify.fix[index] = sync;
-    modify.fmask[index] = sync->setmask();
+    modify.fix[index] = hooks_;
+    modify.fmask[index] = hooks_->setmask();
+}
+
+
+void IceBondForces::removeBondedPairsFromContacts()
+{
+    contactListIsStale_ = false;
+    const LAMMPS_NS::LAMMPS& engine = lmp_.engine();
+    const LAMMPS_NS::Pair* pair = engine.force->pair;
+    if (!pair || !pair->list)
+    {
+        return;
+    }
+    LAMMPS_NS::NeighList& list = *pair->list;
+    const LAMMPS_NS::NeighList* history = pair->listgranhistory;
+    const int values = history ? history->dnum : 0;
+    const int* tag = engine.atom->tag;
+    for (int n = 0; n < list.inum; ++n)
+    {
+        const int i = list.ilist[n];
+        if (table_.count(i) == 0)
+        {
+            continue;
+        }
+        // The contact list and its history list are parallel arrays: compact
+        // all of them alike.
+        int* neighbours = list.firstneigh[i];
+        int* touching = history ? history->firstneigh[i] : nullptr;
+        double* contactHistory = history ? history->firstdouble[i] : nullptr;
+        int kept = 0;
+        for (int k = 0; k < list.numneigh[i]; ++k)
+        {
+            if (table_.find(i, tag[neighbours[k] & NEIGHMASK]) >= 0)
+            {
+                continue;
+            }
+            if (kept != k)
+            {
+                neighbours[kept] = neighbours[k];
+                if (history)
+                {
+                    touching[kept] = touching[k];
+                    std::copy_n(contactHistory + values*k, values, contactHistory + values*kept);
+                }
+            }
+            ++kept;
+        }
+        list.numneigh[i] = kept;
+    }
+}
+
+
+void IceBondForces::rebuildContactsOfBrokenBonds()
+{
+    int broke = brokeThisStep_ ? 1 : 0;
+    brokeThisStep_ = false;
+    MPI_Allreduce(MPI_IN_PLACE, &broke, 1, MPI_INT, MPI_MAX, lmp_.communicator());
+    if (broke && hooks_)
+    {
+        hooks_->rebuildNeighboursAtNextStep();
+    }
 }
 
 
@@ -492,7 +604,9 @@ void IceBondForces::callback(void* self, int64_t, int nlocal, int*, double**, do
     {
         fexternal[i][0] = fexternal[i][1] = fexternal[i][2] = 0.0;
     }
-    static_cast<IceBondForces*>(self)->compute();
+    auto& bonds = *static_cast<IceBondForces*>(self);
+    bonds.compute();
+    bonds.rebuildContactsOfBrokenBonds();
 }
 
 
@@ -617,7 +731,6 @@ BondKernelSettings IceBondForces::kernelSettings() const
     settings.dt = lmp_.timeStep();
     settings.viscous = ice_.damping.model == DampingModel::viscous && ice_.damping.dampingRatio > 0.0;
     settings.dampingRatio = ice_.damping.dampingRatio;
-    settings.contactNormalStiffness = contactNormalStiffness_;
     return settings;
 }
 
@@ -647,6 +760,7 @@ void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& resu
             removeFromTable(b, state.tagA);
         }
         intact_[k] = 0;
+        brokeThisStep_ = true;
         // Adding -0 leaves every sum as it is, even a sum of -0. From now on
         // the kernel writes the bond's loads where nobody sums them.
         const BondEndLoad none{{-0.0, -0.0, -0.0}, {-0.0, -0.0, -0.0}};

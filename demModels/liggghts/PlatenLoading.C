@@ -288,6 +288,10 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
         if (st.sample % samplesPerCheckpoint == 0 && !done && st.steps < maxSteps)
         {
             writeCheckpoint(lmp, bonds);
+            if (!hooks.advance)
+            {
+                startAgainFromCheckpoint(lmp, bonds);
+            }
         }
 
         const auto now = std::chrono::steady_clock::now();
@@ -451,6 +455,18 @@ void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
     bondsPvd_->add(lmp.time(), bondsFile);
     breakage_.writeHdf5(path("postProcessing/breakage.h5"));
     curve_.write(path("postProcessing/platenForce.csv"));
+}
+
+
+void PlatenLoading::startAgainFromCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
+{
+    // A set-up re-sorts the atoms, rebuilds the neighbour lists (contacts of
+    // pairs whose bonds broke since the last build appear) and recomputes the
+    // forces, stepping the bonds' histories once; the restore undoes that step.
+    const std::vector<BondState> states = bonds.bondStatesOfLocalAtoms();
+    lmp.command("run 0");
+    bonds.restoreBonds(states);
+    lmp.command("run 0");
 }
 
 

@@ -314,7 +314,7 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         const IceProperties stage = ice_.softenedForAssembly(modulus, settings_.assemblyDampingAlpha);
         chooseContactsAndStep(particles, stage);
         setContactStiffness();
-        bonds_->changeProperties(stage, contact_.normalStiffness);
+        bonds_->changeProperties(stage);
         const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
         lmp_->command("run " + std::to_string(n));
         steps += n;
@@ -443,7 +443,7 @@ void RidgeScene::assemble()
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft, contact_.normalStiffness);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     waterForces_->defineAddedMassFix();
@@ -774,7 +774,7 @@ void RidgeScene::load()
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
         waterForces_->defineForceFix();
     }
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_, contact_.normalStiffness);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     if (settings_.test == RidgeTest::flexure && waterForces_)

@@ -307,7 +307,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(water_.hydrostatic));
         waterForces_->defineForceFix();
     }
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice, contact.normalStiffness);
+    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
     if (waterForces_)

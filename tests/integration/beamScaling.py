@@ -5,8 +5,10 @@ if a spring, a strength or the damping is wrong:
 - quasi-static, rate-independent loading with strain-based strengths: doubling
   the modulus (bonds and contacts) doubles the elastic slope and the peak force
   (stress = E * strain);
-- at fixed modulus the peak force is proportional to breakN
-  (levelIceParametric.csv, figure 7);
+- at fixed modulus the load of the centre crack (the first peak) is
+  proportional to breakN (levelIceParametric.csv, figure 7). The highest load,
+  carried after the crack by the beam halves arching between the pads, is
+  not: contacts carry it, and they have no strength to scale;
 - the loading is quasi-static (kinetic / elastic energy small at the peak).
 
 usage: beamScaling.py CASE WORKDIR APP
@@ -19,7 +21,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import iceCases  # noqa: E402
 
 case, work, app = sys.argv[1:4]
-common = ["-particles", "400", "-platenSpeed", "0.2"]
+# 0.05 m/s: at 0.2 the crack's load is 1.29 x, not 1.5 x, for breakN x 1.5.
+common = ["-particles", "400", "-platenSpeed", "0.05"]
 
 
 def run(name, factors):
@@ -40,7 +43,7 @@ strong = run("breakN1.5", {"bondFamilies.ice.breakN": 1.5})
 checks = [
     ("slope x2 with modulus x2", stiff["elastic_slope_N_per_m"] / base["elastic_slope_N_per_m"], 2.0, 0.05),
     ("peak x2 with modulus x2", stiff["peak_force_N"] / base["peak_force_N"], 2.0, 0.05),
-    ("peak x1.5 with breakN x1.5", strong["peak_force_N"] / base["peak_force_N"], 1.5, 0.08),
+    ("first peak x1.5 with breakN x1.5", strong["first_peak_force_N"] / base["first_peak_force_N"], 1.5, 0.05),
     ("slope unchanged with breakN x1.5", strong["elastic_slope_N_per_m"] / base["elastic_slope_N_per_m"], 1.0, 0.05),
 ]
 failed = 0

@@ -109,7 +109,7 @@ int main(int argc, char** argv)
         }
         lmp.command("set atom * diameter 0.02 density 917");
 
-        IceBondForces bonds(lmp, ice, 2.0e5);
+        IceBondForces bonds(lmp, ice);
         lmp.command("fix iceBondForces all external pf/callback 1 1");
         bonds.attach("iceBondForces");
         lmp.command("fix integrate all nve/sphere");
