@@ -4,7 +4,9 @@
 1. a thicker consolidated layer carries a higher failure force (same keel,
    same freeze-bonds), and the force ratio lies between 1 and the ratio of the
    layers' bending strengths (D2/D1)^2: the keel and the water carry a share
-   that does not grow with the layer;
+   that does not grow with the layer. Forces are means over two packings of
+   the layer: one pair's ratio scatters (1.98-2.68 over layer seeds 1-4, mean
+   2.27, on 2026-11-21);
 2. the assembled ridge floats: at the water level ridgeDEM chose, the
    spheres' submerged volume is rho_i/rho_w of their volume (Archimedes,
    computed here from the saved particles, to 0.1 %);
@@ -43,13 +45,14 @@ keel = iceCases.small_rubble_case(rubble_case, os.path.join(work, "keel"), LENGT
 iceCases.run_app(rubble_app, keel, 1, ["-stage", "settle"], "log.rubbleDEM")
 
 
-def ridge(name, thickness):
+def ridge(name, thickness, seed=1):
     path = iceCases.copy_case(ridge_case, os.path.join(work, name))
     props = os.path.join(path, "constant", "ridgeProperties")
     iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel, "DEM", "settled.h5"))
     iceCases.set_entry(props, "box.length", LENGTH)
     iceCases.set_entry(props, "box.width", WIDTH)
     iceCases.set_entry(props, "consolidatedLayer.thickness", thickness)
+    iceCases.set_entry(props, "consolidatedLayer.seed", seed)
     iceCases.set_entry(props, "assembly.relaxTime", 0.05)
     iceCases.set_entry(props, "assembly.pressSpeed", 0.05)
     iceCases.set_entry(props, "test.platenLength", 0.15)
@@ -67,10 +70,14 @@ def ridge(name, thickness):
 
 
 thin, thick = ridge("layer10", 0.10), ridge("layer15", 0.15)
-f_thin, f_thick = iceCases.summary(thin)["peak_force_N"], iceCases.summary(thick)["peak_force_N"]
-check(f_thick > f_thin, f"a 0.15 m layer fails at a higher force ({f_thick:.0f} N) than a 0.10 m one ({f_thin:.0f} N)")
+thin2, thick2 = ridge("layer10_seed2", 0.10, 2), ridge("layer15_seed2", 0.15, 2)
+forces = {p: iceCases.summary(p)["peak_force_N"] for p in (thin, thick, thin2, thick2)}
+f_thin = 0.5 * (forces[thin] + forces[thin2])
+f_thick = 0.5 * (forces[thick] + forces[thick2])
+check(f_thick > f_thin, f"a 0.15 m layer fails at a higher force ({forces[thick]:.0f}, {forces[thick2]:.0f} N) "
+      f"than a 0.10 m one ({forces[thin]:.0f}, {forces[thin2]:.0f} N)")
 check(f_thick / f_thin < 1.5 ** 2 * 1.15,
-      f"force ratio {f_thick / f_thin:.2f} at most (0.15/0.10)^2 = 2.25 (+15 % scatter)")
+      f"mean force ratio {f_thick / f_thin:.2f} at most (0.15/0.10)^2 = 2.25 (+15 % scatter)")
 
 for path in (thin, thick):
     name = os.path.basename(path)
