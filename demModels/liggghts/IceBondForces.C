@@ -14,7 +14,7 @@
 #include "modify.h"
 #include "neigh_list.h"
 #include "neighbor.h"
-#include "pair.h"
+#include "pair_gran.h"
 #include "update.h"
 
 #include <algorithm>
@@ -540,14 +540,14 @@ void IceBondForces::removeBondedPairsFromContacts()
 {
     contactListIsStale_ = false;
     const LAMMPS_NS::LAMMPS& engine = lmp_.engine();
-    const LAMMPS_NS::Pair* pair = engine.force->pair;
+    auto* pair = dynamic_cast<LAMMPS_NS::PairGran*>(engine.force->pair);
     if (!pair || !pair->list)
     {
         return;
     }
     LAMMPS_NS::NeighList& list = *pair->list;
     const LAMMPS_NS::NeighList* history = pair->listgranhistory;
-    const int values = history ? history->dnum : 0;
+    const int values = history ? pair->dnum() : 0;   // as the pair style strides its histories
     const int* tag = engine.atom->tag;
     for (int n = 0; n < list.inum; ++n)
     {
