@@ -261,7 +261,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     const double skin = 0.2 * maxRadius;
 
     const std::string readParticles = resume
-        ? "read_restart " + loading_->restartFile()
+        ? "read_restart " + loading_->restartFile(*resume)
         : "read_data " + path("DEM/packing.data");
     ScriptVariables variables
     {

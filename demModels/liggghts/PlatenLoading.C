@@ -161,16 +161,15 @@ void PlatenLoading::log(const std::string& line) const
 }
 
 
-std::string PlatenLoading::restartFile() const
+std::string PlatenLoading::restartFile(const Checkpoint& c) const
 {
-    return path("DEM/checkpoint/liggghts.restart");
+    return path("DEM/checkpoint/liggghts.restart." + std::to_string(c.state.steps));
 }
 
 
 bool PlatenLoading::checkpointExists() const
 {
-    return std::filesystem::exists(path("DEM/checkpoint/" + application_ + ".checkpoint"))
-        && std::filesystem::exists(restartFile());
+    return std::filesystem::exists(path("DEM/checkpoint/" + application_ + ".checkpoint"));
 }
 
 
@@ -187,6 +186,11 @@ Checkpoint PlatenLoading::readCheckpoint() const
     {
         throw RunError(path("DEM/checkpoint") + ": the checkpoint's force curve has other columns; "
             "it was written by another version of " + application_ + ": delete the folder and start again");
+    }
+    if (!std::filesystem::exists(restartFile(c)))
+    {
+        throw RunError(path("DEM/checkpoint") + ": the checkpoint of step " + std::to_string(c.state.steps)
+            + " has no LIGGGHTS restart (" + restartFile(c) + "); delete the folder and start again");
     }
     return c;
 }
@@ -472,8 +476,10 @@ void PlatenLoading::startAgainFromCheckpoint(LiggghtsInstance& lmp, IceBondForce
 
 void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
 {
-    // LIGGGHTS' restart first (particles, contacts, platen), then ours; a
-    // checkpoint counts only when both are complete, and ours names the step.
+    // LIGGGHTS' restart first (particles, contacts, platen), named by its
+    // step, then ours, written atomically, which names the step. The older
+    // restart is removed only after that: a run killed at any moment leaves
+    // a checkpoint whose restart is there.
     const std::string dir = path("DEM/checkpoint");
     if (rank_ == 0)
     {
@@ -490,8 +496,16 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();
         c.bonds = bondStates;
-        std::filesystem::rename(dir + "/liggghts.restart.tmp", restartFile());
+        std::filesystem::rename(dir + "/liggghts.restart.tmp", restartFile(c));
         c.write(dir + "/" + application_ + ".checkpoint");
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+        {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind("liggghts.restart", 0) == 0 && entry.path().string() != restartFile(c))
+            {
+                std::filesystem::remove(entry.path());
+            }
+        }
     }
     MPI_Barrier(comm_);
 }

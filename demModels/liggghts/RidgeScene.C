@@ -730,7 +730,7 @@ void RidgeScene::load()
     startLiggghts
     (
         particles, types, ice_,
-        checkpoint ? "read_restart " + loading_->restartFile() : "read_data " + path("DEM/ridge.data")
+        checkpoint ? "read_restart " + loading_->restartFile(*checkpoint) : "read_data " + path("DEM/ridge.data")
     );
     if (settings_.test != RidgeTest::flexure)
     {

@@ -344,7 +344,7 @@ void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
 
     const double skin = 0.2 * body_.maxRadius();
     const std::string readParticles = resume
-        ? "read_restart " + loading_->restartFile()
+        ? "read_restart " + loading_->restartFile(*resume)
         : "read_data " + path("DEM/packing.data");
     ScriptVariables variables
     {

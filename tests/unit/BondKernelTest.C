@@ -1,5 +1,7 @@
-// The bond kernels (generic and AVX2) against BondModel::evaluate, one
-// bond at a time, bit for bit.
+// The bond kernels (generic and AVX2) on batches of different bonds against
+// BondModel::evaluate, which runs the kernel on each bond alone: lanes do not
+// mix, the loads land in their slots, the screen never hides a break, and both
+// instruction sets agree, bit for bit.
 
 #include "BondColumns.H"
 #include "BondKernel.H"

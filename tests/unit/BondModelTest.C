@@ -66,7 +66,7 @@ TEST(BondStiffness, AxialSpringIsEAoverL)
     const BondLoad load = model.evaluate(s, p.a, p.b, dt);
     const double expected = youngs * area / beamLength * stretch;
     EXPECT_NEAR(load.forceOnA.x() / expected, 1.0, 1e-6);
-    EXPECT_NEAR(load.normalForce / expected, 1.0, 1e-6);
+    EXPECT_NEAR(load.springNormalForce / expected, 1.0, 1e-6);
     EXPECT_NEAR(load.forceOnA.y(), 0.0, 1e-12 * expected);
 }
 
@@ -150,11 +150,21 @@ TEST(BondStiffness, RigidRotationLeavesSpringsUnloaded)
 
 TEST(BondStiffness, StoredVectorsFollowTheBondAndKeepTheirLength)
 {
-    const Vec3 stored(0.0, 3.0, 0.0);
-    const Vec3 n = Vec3(0.1, 1.0, 0.0).normalized();   // bond turned towards y
-    const Vec3 rotated = rotateIntoTangentPlane(stored, n);
-    EXPECT_NEAR(rotated.dot(n), 0.0, 1e-14);
-    EXPECT_NEAR(rotated.norm(), 3.0, 1e-14);
+    // Stored shear and bending vectors normal to the bond along x; b then
+    // stands at (1, 10, 0) from a, at rest: one step turns them into the new
+    // tangent plane with their lengths.
+    BondModel model(iceFamily(), noDamping());
+    Pair p;
+    BondState s = model.create(1, 2, p.a, p.b);
+    s.shearDisplacement = Vec3(0.0, 3e-6, 0.0);
+    s.bendingAngle = Vec3(0.0, 0.0, 2e-4);
+    const Vec3 n = Vec3(0.1, 1.0, 0.0).normalized();
+    p.b.position = p.a.position + 2.0 * radius * n;
+    model.evaluate(s, p.a, p.b, dt);
+    EXPECT_NEAR(s.shearDisplacement.dot(n), 0.0, 1e-14 * 3e-6);
+    EXPECT_NEAR(s.shearDisplacement.norm() / 3e-6, 1.0, 1e-14);
+    EXPECT_NEAR(s.bendingAngle.dot(n), 0.0, 1e-14 * 2e-4);
+    EXPECT_NEAR(s.bendingAngle.norm() / 2e-4, 1.0, 1e-14);
 }
 
 TEST(BondStiffness, UnequalRadiiUseSmallerRadiusAndSumLength)
