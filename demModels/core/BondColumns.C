@@ -3,6 +3,21 @@
 namespace iceDEM
 {
 
+KernelAtom kernelAtomOf(const ParticleState& p)
+{
+    KernelAtom atom;
+    for (int c = 0; c < 3; ++c)
+    {
+        atom.position[c] = p.position[c];
+        atom.velocity[c] = p.velocity[c];
+        atom.angularVelocity[c] = p.angularVelocity[c];
+    }
+    atom.radius = p.radius;
+    atom.mass = p.mass;
+    return atom;
+}
+
+
 std::array<std::vector<double>*, 16> BondColumns::doubleColumns()
 {
     return

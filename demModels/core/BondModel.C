@@ -1,6 +1,6 @@
 #include "BondModel.H"
 
-#include "BondKernel.H"
+#include "BondColumns.H"
 
 #include <algorithm>
 #include <array>
@@ -16,20 +16,6 @@ namespace
 double ratio(double load, double limit)
 {
     return limit > 0.0 ? load / limit : 0.0;
-}
-
-KernelAtom kernelAtomOf(const ParticleState& p)
-{
-    KernelAtom atom;
-    for (int c = 0; c < 3; ++c)
-    {
-        atom.position[c] = p.position[c];
-        atom.velocity[c] = p.velocity[c];
-        atom.angularVelocity[c] = p.angularVelocity[c];
-    }
-    atom.radius = p.radius;
-    atom.mass = p.mass;
-    return atom;
 }
 
 } // namespace

@@ -36,20 +36,6 @@ bool sameBits(double x, double y)
     return std::memcmp(&x, &y, sizeof x) == 0;
 }
 
-KernelAtom kernelAtom(const ParticleState& p)
-{
-    KernelAtom k;
-    for (int c = 0; c < 3; ++c)
-    {
-        k.position[c] = p.position[c];
-        k.velocity[c] = p.velocity[c];
-        k.angularVelocity[c] = p.angularVelocity[c];
-    }
-    k.radius = p.radius;
-    k.mass = p.mass;
-    return k;
-}
-
 //- Random bonds between pairs of random radii, stretched, compressed (so
 //  that the contact spring is cancelled), sheared, spinning, some breaking,
 //  one with no history at all; the last batch is incomplete.
@@ -101,7 +87,7 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
     std::vector<KernelAtom> atoms;
     for (const ParticleState& p : bonds.particles)
     {
-        atoms.push_back(kernelAtom(p));
+        atoms.push_back(kernelAtomOf(p));
     }
     std::vector<BondStiffness> stiffnesses;
     BondColumns columns;
