@@ -421,7 +421,8 @@ void IceBondForces::removeFromTable(int atom, long partnerTag)
 }
 
 
-std::vector<BondState> IceBondForces::tableBondStates() const
+template<class Keep>
+std::vector<BondState> IceBondForces::tableBondStatesOf(Keep keep) const
 {
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     std::vector<BondState> states;
@@ -430,7 +431,7 @@ std::vector<BondState> IceBondForces::tableBondStates() const
         const int n = table_.count(i);
         for (int slot = 0; slot < n; ++slot)
         {
-            if (atom.tag[i] < table_.partner(i, slot))
+            if (keep(atom.tag[i], table_.partner(i, slot)))
             {
                 states.push_back(table_.read(i, slot, atom.tag[i]));
             }
@@ -440,25 +441,22 @@ std::vector<BondState> IceBondForces::tableBondStates() const
 }
 
 
+std::vector<BondState> IceBondForces::tableBondStates() const
+{
+    return tableBondStatesOf([](long tag, long partner) { return tag < partner; });
+}
+
+
 std::vector<BondState> IceBondForces::bondStatesOfLocalAtoms()
 {
     syncTable();
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;   // map() is not const
-    std::vector<BondState> states;
-    for (int i = 0; i < atom.nlocal; ++i)
+    return tableBondStatesOf([&atom](long tag, long partner)
     {
-        for (int slot = 0; slot < table_.count(i); ++slot)
-        {
-            const long partner = table_.partner(i, slot);
-            const int partnerAtom = atom.map(static_cast<int>(partner));
-            const bool partnerIsLocal = partnerAtom >= 0 && partnerAtom < atom.nlocal;
-            if (atom.tag[i] < partner || !partnerIsLocal)
-            {
-                states.push_back(table_.read(i, slot, atom.tag[i]));
-            }
-        }
-    }
-    return states;
+        const int partnerAtom = atom.map(static_cast<int>(partner));
+        const bool partnerIsLocal = partnerAtom >= 0 && partnerAtom < atom.nlocal;
+        return tag < partner || !partnerIsLocal;
+    });
 }
 
 

@@ -496,12 +496,13 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();
         c.bonds = bondStates;
-        std::filesystem::rename(dir + "/liggghts.restart.tmp", restartFile(c));
+        const std::string restart = restartFile(c);
+        std::filesystem::rename(dir + "/liggghts.restart.tmp", restart);
         c.write(dir + "/" + application_ + ".checkpoint");
         for (const auto& entry : std::filesystem::directory_iterator(dir))
         {
             const std::string name = entry.path().filename().string();
-            if (name.rfind("liggghts.restart", 0) == 0 && entry.path().string() != restartFile(c))
+            if (name.rfind("liggghts.restart", 0) == 0 && entry.path().string() != restart)
             {
                 std::filesystem::remove(entry.path());
             }

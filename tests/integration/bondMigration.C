@@ -9,6 +9,7 @@
 // usage: mpirun -np N bondMigration OUTPUT.txt [resync]
 
 #include "BondBuilder.H"
+#include "GranularBox.H"
 #include "IceBondForces.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
@@ -82,32 +83,7 @@ int main(int argc, char** argv)
     int status = 0;
     {
         LiggghtsInstance lmp(MPI_COMM_WORLD, "none");
-        for (const char* c :
-        {
-            "atom_style sphere", "atom_modify map array", "boundary f f f", "newton off",
-            "units si", "communicate single cutoff 0.03 vel yes", "processors * 1 1",
-            "region box block -0.3 0.3 -0.2 0.2 -0.2 0.2 units box", "create_box 1 box",
-            "neighbor 0.002 bin", "neigh_modify delay 0",
-            "fix m1 all property/global kn peratomtypepair 1 2.0e5",
-            "fix m2 all property/global kt peratomtypepair 1 0.8e5",
-            "fix m3 all property/global gamman_abs peratomtypepair 1 0",
-            "fix m4 all property/global gammat_abs peratomtypepair 1 0",
-            "fix m5 all property/global coefficientFriction peratomtypepair 1 0.3",
-            "fix m6 all property/global coefficientRollingFriction peratomtypepair 1 0.0",
-            "pair_style gran model hooke/stiffness tangential history absolute_damping on",
-            "pair_coeff * *", "timestep 1e-5"
-        })
-        {
-            lmp.command(c);
-        }
-        for (const ParticleSpec& p : particles)
-        {
-            std::ostringstream cmd;
-            cmd << std::setprecision(17) << "create_atoms 1 single " << p.position.x() << " "
-                << p.position.y() << " " << p.position.z() << " units box";
-            lmp.command(cmd.str());
-        }
-        lmp.command("set atom * diameter 0.02 density 917");
+        setUpGranularBox(lmp, "-0.3 0.3 -0.2 0.2 -0.2 0.2", 2.0e5, particles);
 
         IceBondForces bonds(lmp, ice);
         lmp.command("fix iceBondForces all external pf/callback 1 1");

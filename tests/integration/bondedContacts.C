@@ -14,6 +14,7 @@
 // usage: mpirun -np N bondedContacts
 
 #include "BondBuilder.H"
+#include "GranularBox.H"
 #include "IceBondForces.H"
 #include "LiggghtsInstance.H"
 
@@ -23,7 +24,6 @@
 #include <mpi.h>
 
 #include <cmath>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -78,34 +78,7 @@ int main(int argc, char** argv)
 
     {
         LiggghtsInstance lmp(MPI_COMM_WORLD, "none");
-        std::ostringstream kn;
-        kn << std::setprecision(17) << contactNormalStiffness;
-        for (const std::string& c :
-        {
-            std::string("atom_style sphere"), std::string("atom_modify map array"), std::string("boundary f f f"),
-            std::string("newton off"), std::string("units si"), std::string("communicate single cutoff 0.03 vel yes"),
-            std::string("processors * 1 1"), std::string("region box block -0.1 0.1 -0.1 0.1 -0.1 0.1 units box"),
-            std::string("create_box 1 box"), std::string("neighbor 0.002 bin"), std::string("neigh_modify delay 0"),
-            "fix m1 all property/global kn peratomtypepair 1 " + kn.str(),
-            std::string("fix m2 all property/global kt peratomtypepair 1 0.8e5"),
-            std::string("fix m3 all property/global gamman_abs peratomtypepair 1 0"),
-            std::string("fix m4 all property/global gammat_abs peratomtypepair 1 0"),
-            std::string("fix m5 all property/global coefficientFriction peratomtypepair 1 0.3"),
-            std::string("fix m6 all property/global coefficientRollingFriction peratomtypepair 1 0.0"),
-            std::string("pair_style gran model hooke/stiffness tangential history absolute_damping on"),
-            std::string("pair_coeff * *"), std::string("timestep 1e-5")
-        })
-        {
-            lmp.command(c);
-        }
-        for (const ParticleSpec& p : particles)
-        {
-            std::ostringstream cmd;
-            cmd << std::setprecision(17) << "create_atoms 1 single " << p.position.x() << " "
-                << p.position.y() << " " << p.position.z() << " units box";
-            lmp.command(cmd.str());
-        }
-        lmp.command("set atom * diameter 0.02 density 917");
+        setUpGranularBox(lmp, "-0.1 0.1 -0.1 0.1 -0.1 0.1", contactNormalStiffness, particles);
 
         IceBondForces bonds(lmp, ice);
         lmp.command("fix iceBondForces all external pf/callback 1 1");
