@@ -1,6 +1,6 @@
 #include "BondModel.H"
 
-#include "BondColumns.H"
+#include "BondBatches.H"
 
 #include <algorithm>
 #include <array>
@@ -165,51 +165,14 @@ BondLoad BondModel::evaluate
     // The bond alone in every lane of the runs' kernel, so that one-bond
     // callers (the unit tests, SerialBondedSystem) step it with the very
     // arithmetic the runs use. Every lane writes the same loads to the same two slots.
-    constexpr int lanes = bondKernelLanes;
     const KernelAtom atoms[2] = {kernelAtomOf(a), kernelAtomOf(b)};
-    const int atomA[lanes] = {}, slotA[lanes] = {};
-    int atomB[lanes], slotB[lanes];
-    std::fill_n(atomB, lanes, 1);
-    std::fill_n(slotB, lanes, 1);
-    auto column = [](double value)
-    {
-        std::array<double, lanes> c;
-        c.fill(value);
-        return c;
-    };
-    const auto restLength = column(state.restLength);
-    const auto kNormal = column(k.normal), kShear = column(k.shear), kTwist = column(k.twist);
-    const auto kBending = column(k.bending);
-    auto twistAngle = column(state.twistAngle);
-    std::array<double, lanes> shearDisplacement[3], bendingAngle[3];
-    for (int c = 0; c < 3; ++c)
-    {
-        shearDisplacement[c] = column(state.shearDisplacement[c]);
-        bendingAngle[c] = column(state.bendingAngle[c]);
-    }
-    const auto noScreen = column(-std::numeric_limits<double>::infinity());   // breakMode below decides
+    BondBatches bond;
+    bond.resize(1);
+    const double noScreen = -std::numeric_limits<double>::infinity();   // breakMode below decides
+    bond.set(0, 0, 1, state, k, {noScreen, noScreen, noScreen, noScreen});
+    bond.setLoadSlots(0, 0, 1);
+    bond.pad();
     BondEndLoad ends[2];
-
-    BondColumnsView view;
-    view.atoms = atoms;
-    view.a = atomA;
-    view.b = atomB;
-    view.restLength = restLength.data();
-    view.kNormal = kNormal.data();
-    view.kShear = kShear.data();
-    view.kTwist = kTwist.data();
-    view.kBending = kBending.data();
-    view.twistAngle = twistAngle.data();
-    for (int c = 0; c < 3; ++c)
-    {
-        view.shearDisplacement[c] = shearDisplacement[c].data();
-        view.bendingAngle[c] = bendingAngle[c].data();
-    }
-    view.intactNormalForce = view.intactShearForce2 = view.intactTwistTorque2 = view.intactBendingTorque2 =
-        noScreen.data();
-    view.loads = ends;
-    view.loadOfA = slotA;
-    view.loadOfB = slotB;
 
     BondKernelSettings settings;
     settings.dt = dt;
@@ -217,14 +180,8 @@ BondLoad BondModel::evaluate
     settings.dampingRatio = damping_.dampingRatio;
     static const BondKernel kernel = bestBondKernel();
     BondKernelResult result;
-    kernel(view, settings, 0, result);
-
-    state.twistAngle = twistAngle[0];
-    for (int c = 0; c < 3; ++c)
-    {
-        state.shearDisplacement[c] = shearDisplacement[c][0];
-        state.bendingAngle[c] = bendingAngle[c][0];
-    }
+    kernel(atoms, bond.batch(0), ends, settings, result);
+    bond.copyHistory(0, state);
     BondLoad load;
     load.centre = Vec3(result.centre[0][0], result.centre[1][0], result.centre[2][0]);
     // The limits apply to the spring loads, before any viscous damping.

@@ -327,15 +327,15 @@ void IceBondForces::rebuildList()
         return std::tie(x.a, x.b) < std::tie(y.a, y.b);
     });
     intact_.assign(list_.size(), 1);
-    columns_.resize(list_.size());
+    batches_.resize(list_.size());
     for (std::size_t k = 0; k < list_.size(); ++k)
     {
         const ListedBond& bond = list_[k];
         const BondStiffness& stiffness = stiffnesses_[bond.stiffness];
         const BondModel& model = models_[static_cast<int>(bond.state.family)];
-        columns_.set(k, bond.a, bond.b, bond.state, stiffness, model.intactBounds(bond.state, stiffness));
+        batches_.set(k, bond.a, bond.b, bond.state, stiffness, model.intactBounds(bond.state, stiffness));
     }
-    columns_.pad();
+    batches_.pad();
 
     // Each local atom's load slots, by partner tag.
     const int entries = static_cast<int>(atomOf_.size());
@@ -380,13 +380,15 @@ void IceBondForces::rebuildList()
     }
     const int unsummed = firstOfAtom_[entries];   // the slot of ghosts' and padding's ends
     slots_.resize(unsummed + 1);
-    const std::size_t padded = (list_.size() + bondKernelLanes - 1) / bondKernelLanes * bondKernelLanes;
-    slotOfA_.assign(padded, unsummed);
-    slotOfB_.assign(padded, unsummed);
+    std::vector<int> slotOfA(batches_.batches() * bondKernelLanes, unsummed), slotOfB = slotOfA;
     for (int n = 0; n < unsummed; ++n)
     {
         const int end = atomBonds[n];
-        (end % 2 ? slotOfB_ : slotOfA_)[end / 2] = n;
+        (end % 2 ? slotOfB : slotOfA)[end / 2] = n;
+    }
+    for (std::size_t k = 0; k < slotOfA.size(); ++k)
+    {
+        batches_.setLoadSlots(k, slotOfA[k], slotOfB[k]);
     }
     lastA_.resize(entries);
     for (int e = 0, last = 0; e < entries; ++e)
@@ -406,7 +408,7 @@ void IceBondForces::rebuildList()
 BondState IceBondForces::listedState(std::size_t bond) const
 {
     BondState state = list_[bond].state;
-    columns_.copyHistory(bond, state);
+    batches_.copyHistory(bond, state);
     return state;
 }
 
@@ -653,34 +655,34 @@ void IceBondForces::compute()
         }
     };
     constexpr int sumEvery = 64;   // entries of a between sums
-    constexpr std::size_t prefetchAhead = 2 * bondKernelLanes;
+    constexpr std::size_t prefetchAhead = 2;   // batches
     int steppedBelow = 0;          // every bond with a below this is stepped
-    const std::size_t bonds = list_.size();
-    BondColumnsView columns = columns_.view(particles_.data());
-    columns.loads = slots_.data();
-    columns.loadOfA = slotOfA_.data();
-    columns.loadOfB = slotOfB_.data();
+    const std::size_t batches = batches_.batches();
     const BondKernelSettings settings = kernelSettings();
     BondKernelResult result;
-    for (std::size_t first = 0; first < bonds; first += bondKernelLanes)
+    for (std::size_t j = 0; j < batches; ++j)
     {
-        const std::size_t end = std::min(first + bondKernelLanes, bonds);
-        if (columns.a[first] >= steppedBelow + sumEvery)
+        BondBatch& batch = batches_.batch(j);
+        if (batch.a[0] >= steppedBelow + sumEvery)
         {
-            steppedBelow = columns.a[first];
+            steppedBelow = batch.a[0];
             sumBelow(steppedBelow);
         }
         // Broken bonds are stepped too (it is cheaper than leaving them out),
-        // and their results dropped.
+        // and their results dropped; so is the padding.
         int lastAtom = 0;
-        for (std::size_t k = first; k < end; ++k)
+        for (int l = 0; l < bondKernelLanes; ++l)
         {
-            lastAtom = std::max({lastAtom, columns.a[k], columns.b[k]});
+            lastAtom = std::max({lastAtom, batch.a[l], batch.b[l]});
         }
         gatherUpTo(lastAtom);
-        prefetchBEnds(columns, std::min(first + prefetchAhead, bonds), std::min(end + prefetchAhead, bonds));
-        const int mayBreak = kernel_(columns, settings, first, result);
-        for (std::size_t k = first; mayBreak && k < end; ++k)
+        if (j + prefetchAhead < batches)
+        {
+            prefetchBEnds(batches_.batch(j + prefetchAhead));
+        }
+        const int mayBreak = kernel_(particles_.data(), batch, slots_.data(), settings, result);
+        const std::size_t first = j * bondKernelLanes;
+        for (std::size_t k = first; mayBreak && k < std::min(first + bondKernelLanes, list_.size()); ++k)
         {
             const int lane = static_cast<int>(k - first);
             if ((mayBreak >> lane & 1) && intact_[k])
@@ -693,14 +695,14 @@ void IceBondForces::compute()
 }
 
 
-void IceBondForces::prefetchBEnds(const BondColumnsView& columns, std::size_t first, std::size_t end) const
+void IceBondForces::prefetchBEnds(const BondBatch& batch) const
 {
     // A bond's b atom, and so its slot, can lie far from its a in the atom
     // order: ask for them before the kernel needs them.
-    for (std::size_t k = first; k < end; ++k)
+    for (int l = 0; l < bondKernelLanes; ++l)
     {
-        const char* atom = reinterpret_cast<const char*>(&particles_[columns.b[k]]);
-        const char* slot = reinterpret_cast<const char*>(&slots_[slotOfB_[k]]);
+        const char* atom = reinterpret_cast<const char*>(&particles_[batch.b[l]]);
+        const char* slot = reinterpret_cast<const char*>(&slots_[batch.loadOfB[l]]);
         __builtin_prefetch(atom);
         __builtin_prefetch(atom + sizeof(KernelAtom) - 1);
         __builtin_prefetch(slot, 1);
@@ -762,12 +764,10 @@ void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& resu
         // Adding -0 leaves every sum as it is, even a sum of -0. From now on
         // the kernel writes the bond's loads where nobody sums them.
         const BondEndLoad none{{-0.0, -0.0, -0.0}, {-0.0, -0.0, -0.0}};
+        slots_[batches_.loadOfA(k)] = none;
+        slots_[batches_.loadOfB(k)] = none;
         const int unsummed = static_cast<int>(slots_.size()) - 1;
-        for (std::vector<int>* slotOf : {&slotOfA_, &slotOfB_})
-        {
-            slots_[(*slotOf)[k]] = none;
-            (*slotOf)[k] = unsummed;
-        }
+        batches_.setLoadSlots(k, unsummed, unsummed);
     }
 }
 

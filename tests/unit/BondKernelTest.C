@@ -3,7 +3,7 @@
 // mix, the loads land in their slots, the screen never hides a break, and both
 // instruction sets agree, bit for bit.
 
-#include "BondColumns.H"
+#include "BondBatches.H"
 #include "BondKernel.H"
 #include "BondModel.H"
 
@@ -90,40 +90,34 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
         atoms.push_back(kernelAtomOf(p));
     }
     std::vector<BondStiffness> stiffnesses;
-    BondColumns columns;
-    columns.resize(RandomBonds::count);
+    BondBatches batches;
+    batches.resize(RandomBonds::count);
     for (int i = 0; i < RandomBonds::count; ++i)
     {
         const ParticleState& a = bonds.particles[2 * i];
         const ParticleState& b = bonds.particles[2 * i + 1];
         stiffnesses.push_back(BondStiffness::of(model.parameters(), a.radius, b.radius));
-        columns.set(i, 2 * i, 2 * i + 1, bonds.states[i], stiffnesses.back(),
+        batches.set(i, 2 * i, 2 * i + 1, bonds.states[i], stiffnesses.back(),
                     model.intactBounds(bonds.states[i], stiffnesses.back()));
+        // Bond i's loads on a and b go to slots 2i and 2i + 1; the padding's to the last.
+        batches.setLoadSlots(i, 2 * i, 2 * i + 1);
     }
-    columns.pad();
+    batches.pad();
+    for (std::size_t i = RandomBonds::count; i < batches.batches() * bondKernelLanes; ++i)
+    {
+        batches.setLoadSlots(i, 2 * RandomBonds::count, 2 * RandomBonds::count);
+    }
     BondKernelSettings settings;
     settings.dt = dt;
     settings.viscous = damping.model == DampingModel::viscous && damping.dampingRatio > 0.0;
     settings.dampingRatio = damping.dampingRatio;
-    BondColumnsView view = columns.view(atoms.data());
-    // Bond i's loads on a and b go to slots 2i and 2i + 1; the padding's to the last.
     std::vector<BondEndLoad> loads(2 * RandomBonds::count + 1);
-    std::vector<int> loadOfA(RandomBonds::count + bondKernelLanes, 2 * RandomBonds::count);
-    std::vector<int> loadOfB = loadOfA;
-    for (int i = 0; i < RandomBonds::count; ++i)
-    {
-        loadOfA[i] = 2 * i;
-        loadOfB[i] = 2 * i + 1;
-    }
-    view.loads = loads.data();
-    view.loadOfA = loadOfA.data();
-    view.loadOfB = loadOfB.data();
 
     int broken = 0, surelyIntact = 0;
     for (int first = 0; first < RandomBonds::count; first += bondKernelLanes)
     {
         BondKernelResult result;
-        const int mayBreak = kernel(view, settings, first, result);
+        const int mayBreak = kernel(atoms.data(), batches.batch(first / bondKernelLanes), loads.data(), settings, result);
         for (int i = first; i < std::min(first + bondKernelLanes, RandomBonds::count); ++i)
         {
             const int l = i - first;
@@ -144,7 +138,7 @@ void expectKernelMatchesModel(BondKernel kernel, const DampingParameters& dampin
             }
             broken += mode != BreakMode::none;
             BondState stepped = bonds.states[i];
-            columns.copyHistory(i, stepped);
+            batches.copyHistory(i, stepped);
             const Vec3 forceOnA = load.forceOnA;
             if (mode != BreakMode::none)
             {
