@@ -8,7 +8,12 @@
    Law2_ScGeom6D_CohFrictPhys_CohesionMoment) on the same packing, time step,
    pads and platen.
 
-    ./benchmark.py [-particles 13000] [-steps 2000]
+    ./benchmark.py [-particles 13000] [-steps 2000] [-repeats 3]
+
+The bonded and the plain run alternate -repeats times (the machine is shared
+and its speed drifts: a pair run back to back sees the same machine); each
+model's row gives its median loop time, and the cost ratio is the median of
+the pairs' ratios, with their range. Yade runs once.
 
 Needs Debian's Yade besides the project's own packages: apt-get install yade.
 
@@ -20,6 +25,7 @@ import json
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -45,45 +51,62 @@ def timed(cmd, cwd, log):
     return wall, rss / 1024.0
 
 
+def run_bonded(app, case, particles, steps):
+    """The bonded beam (iceBeamDEM) on one rank."""
+    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", str(particles), "-steps", str(steps)],
+                   case, "log.bonded")
+    s = iceCases.summary(case)
+    return {"model": "iceBeamDEM bonded (this project)", "particles": s["particles"], "bonds": s["bonds"],
+            "steps": s["steps"], "dt": s["dt"], "loop_wall_s": s["loop_wall_s"],
+            "particle_steps_per_s": s["particle_steps_per_s"], "peak_rss_MiB": rss}
+
+
+def run_granular(script, case, dt):
+    """The same packing, platen and contacts in plain LIGGGHTS, no bonds."""
+    _, rss = timed(["liggghts", "-in", script, "-log", os.path.join(case, "log.liggghts.granular")], case,
+                   "log.granular")
+    loop = re.search(r"Loop time of ([\d.e+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
+                     open(os.path.join(case, "log.granular")).read())
+    wall, steps, atoms = float(loop.group(1)), int(loop.group(2)), int(loop.group(3))
+    return {"model": "LIGGGHTS 3.8 granular contacts, no bonds", "particles": atoms, "bonds": 0,
+            "steps": steps, "dt": dt, "loop_wall_s": wall,
+            "particle_steps_per_s": atoms * steps / wall, "peak_rss_MiB": rss}
+
+
+def median_run(runs):
+    """The run with the median loop time (the lower middle one of an even count)."""
+    return sorted(runs, key=lambda r: r["loop_wall_s"])[(len(runs) - 1) // 2]
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("-particles", type=int, default=13000)
     p.add_argument("-steps", type=int, default=2000)
+    p.add_argument("-repeats", type=int, default=3, help="bonded/plain pairs run back to back")
     p.add_argument("-out", default=os.path.join(here, "benchmark"))
     a = p.parse_args()
+    if a.repeats < 1:
+        sys.exit(f"benchmark.py: -repeats {a.repeats}: must be at least 1")
     if shutil.which("yade") is None:
         sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
     load_start = os.getloadavg()[0]   # the machine may be shared: timings are only comparable at low load
     case = iceCases.copy_case(os.path.join(here, ".."), os.path.join(a.out, "case"))
     app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
-    results = []
-
-    # 1. bonded
-    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", str(a.particles), "-steps", str(a.steps)],
-                   case, "log.bonded")
-    s = iceCases.summary(case)
-    results.append({"model": "iceBeamDEM bonded (this project)", "particles": s["particles"], "bonds": s["bonds"],
-                    "steps": s["steps"], "dt": s["dt"], "loop_wall_s": s["loop_wall_s"],
-                    "particle_steps_per_s": s["particle_steps_per_s"], "peak_rss_MiB": rss})
-
-    # 2. plain LIGGGHTS granular, same packing and script, no bonds
     bench = os.path.join(case, "DEM", "in.benchmarkGranular")
     with open(bench, "w") as f:
         f.write(f"include {case}/DEM/variables.generated\ninclude {case}/DEM/in.levelIceBeam\n"
                 f"thermo 0\nrun {a.steps}\n")
-    _, rss = timed(["liggghts", "-in", bench, "-log", os.path.join(case, "log.liggghts.granular")], case,
-                   "log.granular")
-    loop = re.search(r"Loop time of ([\d.e+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
-                     open(os.path.join(case, "log.granular")).read())
-    wall, steps, atoms = float(loop.group(1)), int(loop.group(2)), int(loop.group(3))
-    results.append({"model": "LIGGGHTS 3.8 granular contacts, no bonds", "particles": atoms, "bonds": 0,
-                    "steps": steps, "dt": s["dt"], "loop_wall_s": wall,
-                    "particle_steps_per_s": atoms * steps / wall, "peak_rss_MiB": rss})
+    bonded_runs, granular_runs = [], []
+    for _ in range(a.repeats):
+        bonded_runs.append(run_bonded(app, case, a.particles, a.steps))
+        granular_runs.append(run_granular(bench, case, bonded_runs[-1]["dt"]))
+    pair_ratios = [g["particle_steps_per_s"] / b["particle_steps_per_s"] for b, g in zip(bonded_runs, granular_runs)]
+    results = [median_run(bonded_runs), median_run(granular_runs)]
 
     # 3. Yade CohFrictMat bonded
     yade_json = os.path.join(case, "yade.json")
     _, rss = timed(["yade", "-j1", "-n", "-x", os.path.join(here, "yadeBondedBeam.py"),
-                    os.path.join(case, "DEM", "packing.data"), str(a.steps), repr(s["dt"]), yade_json],
+                    os.path.join(case, "DEM", "packing.data"), str(a.steps), repr(results[0]["dt"]), yade_json],
                    case, "log.yade")
     y = json.load(open(yade_json))
     results.append({"model": f"Yade {y['version']} CohFrictMat bonded", "particles": y["particles"],
@@ -95,7 +118,9 @@ def main():
         "machine": os.uname().nodename, "cores_used": 1, "date": time.strftime("%Y-%m-%d %H:%M"),
         "cores": os.cpu_count(), "load_average_1min_start": load_start, "load_average_1min_end": os.getloadavg()[0],
         "results": results,
-        "bonded_cost_over_granular": granular["particle_steps_per_s"] / bonded["particle_steps_per_s"],
+        "repeats": a.repeats,
+        "bonded_cost_over_granular": statistics.median(pair_ratios),
+        "bonded_cost_over_granular_pairs": pair_ratios,
         "bonded_speedup_over_yade": bonded["particle_steps_per_s"] / yade["particle_steps_per_s"],
     }
     os.makedirs(a.out, exist_ok=True)
@@ -107,7 +132,8 @@ def main():
                      f"{r['particle_steps_per_s']:.3g} | {r['peak_rss_MiB']:.0f} |")
     lines.append("")
     lines.append(f"Bonded cost per particle-step / plain granular: {report['bonded_cost_over_granular']:.2f} "
-                 f"(limit 2.5). Bonded speed / Yade: {report['bonded_speedup_over_yade']:.2f}. "
+                 f"(limit 2.5; median of {a.repeats} interleaved pairs, "
+                 f"{min(pair_ratios):.2f}-{max(pair_ratios):.2f}). Bonded speed / Yade: {report['bonded_speedup_over_yade']:.2f}. "
                  f"Machine load (1-minute average) {report['load_average_1min_start']:.1f} at the start, "
                  f"{report['load_average_1min_end']:.1f} at the end, on {report['cores']} cores.")
     iceCases.write_atomically(os.path.join(a.out, "benchmark.md"), "\n".join(lines) + "\n")
