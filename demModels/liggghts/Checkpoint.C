@@ -12,7 +12,8 @@ namespace iceDEM
 namespace
 {
 
-constexpr std::uint64_t magic = 0x69636544454d3031ULL;   // "iceDEM01"
+constexpr std::uint64_t magic = 0x69636544454d3032ULL;   // "iceDEM02"
+constexpr std::uint64_t magicOfVersion1 = 0x69636544454d3031ULL;   // LoadingState without liggghtsStepAtStart
 
 class Writer
 {
@@ -166,7 +167,13 @@ Checkpoint Checkpoint::read(const std::string& path)
         throw std::runtime_error(path + ": no checkpoint to resume from");
     }
     Reader r(in, path);
-    if (r.get<std::uint64_t>() != magic)
+    const auto start = r.get<std::uint64_t>();
+    if (start == magicOfVersion1)
+    {
+        throw std::runtime_error(path + ": written by an older version of the program; delete the "
+            "checkpoint folder and start again");
+    }
+    if (start != magic)
     {
         throw std::runtime_error(path + ": not an iceDEM checkpoint");
     }

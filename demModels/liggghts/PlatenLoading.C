@@ -198,15 +198,18 @@ Checkpoint PlatenLoading::readCheckpoint() const
 
 void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBondForces& bonds)
 {
-    // LIGGGHTS restores the step number but restarts its clock at zero.
+    // LIGGGHTS restores the step number but restarts its clock at zero. Its
+    // steps include any settling before the loading; the checkpoint's count
+    // only the loading's.
     LAMMPS_NS::Update& update = *lmp.engine().update;
-    if (update.ntimestep != c.state.steps)
+    const long expectedStep = c.state.liggghtsStepAtStart + c.state.steps;
+    if (update.ntimestep != expectedStep)
     {
         throw RunError(path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
             + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
-            + std::to_string(c.state.steps) + "; delete the folder and start again");
+            + std::to_string(expectedStep) + "; delete the folder and start again");
     }
-    update.atime = c.state.steps * state_.dt;
+    update.atime = update.ntimestep * state_.dt;
     update.atimestep = update.ntimestep;
     bonds.restoreBonds(c.bonds);
 
@@ -249,6 +252,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     if (!resumed_)
     {
         st.startTime = lmp.time();
+        st.liggghtsStepAtStart = lmp.step();
         st.kineticAtStart = totalKineticEnergy(lmp);
         writeFrame(lmp, bonds);
     }

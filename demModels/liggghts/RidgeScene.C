@@ -2,6 +2,7 @@
 
 #include "AtomicFile.H"
 #include "BondBuilder.H"
+#include "BondedBody.H"
 #include "Dictionary.H"
 #include "FreezeBonding.H"
 #include "IceBondForces.H"
@@ -356,16 +357,16 @@ void RidgeScene::startLiggghts
         top = std::max(top, p.position.z() + p.radius);
     }
 
+    const double margin = 0.05;
+    boxLow_ = Vec3(-margin, -margin, -margin);
+    boxHigh_ = Vec3(settings_.layer.length + margin, settings_.layer.width + margin, top + settings_.loading.maxTravel + 0.5);
     if (rank_ == 0)
     {
         std::filesystem::create_directories(path("DEM"));
         std::filesystem::create_directories(path("postProcessing"));
-        const double margin = 0.05;
         writeLiggghtsData
         (
-            path("DEM/ridge.data"), "ridge written by ridgeDEM", particles, ice.material.density,
-            Vec3(-margin, -margin, -margin),
-            Vec3(settings_.layer.length + margin, settings_.layer.width + margin, top + settings_.loading.maxTravel + 0.5),
+            path("DEM/ridge.data"), "ridge written by ridgeDEM", particles, ice.material.density, boxLow_, boxHigh_,
             boxTypes, [&](const ParticleSpec& p) { return types[&p - particles.data()]; }
         );
     }
@@ -586,6 +587,18 @@ void RidgeScene::writeGeometry(const RidgeGeometry& g, const std::vector<SavedPa
       << " \"overlapsBetweenBlocksAtBonding\": {\"touchingPairs\": " << atBonding.touchingPairs
       << ", \"mean\": " << atBonding.meanOverlap << ", \"max\": " << atBonding.maxOverlap << "}}\n";
     writeFileAtomically(path("postProcessing/geometry.json"), j.str());
+}
+
+
+long RidgeScene::stopParticlesAtBoxEdge()
+{
+    // A piece that breaks off with its bonds' stored energy can fly over the
+    // ridge's fixed ends (seen once in about thirty runs: a CL sphere at 0.6 m/s
+    // past the peak) and would leave the box, which stops the run. Gravity
+    // would bring it down in the water outside the ridge; instead it is
+    // stopped within 20 mm of the box's faces, and counted.
+    const Vec3 edge = Vec3::Constant(0.02);
+    return stopParticlesOutside(*lmp_, boxLow_ + edge, boxHigh_ - edge, fixedType);
 }
 
 
@@ -810,7 +823,7 @@ void RidgeScene::load()
     }
     // The test moves off smoothly (loading.rampTravel): a sudden start would
     // hit the ice with a force spike.
-    const long startStep = lmp_->step();
+    const long startStep = checkpoint ? checkpoint->state.liggghtsStepAtStart : lmp_->step();
     const std::string speed = settings_.loading.speedFormula(startStep, dt_);
     const std::string travel = settings_.loading.travelFormula(startStep, dt_);
     lmp_->command("variable zero equal 0");
@@ -831,6 +844,14 @@ void RidgeScene::load()
     // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
     // registered as moving by one, so the motion gets its own.
     lmp_->command("run 0 post no");
+    if (checkpoint)
+    {
+        // Each set-up steps the bonds' histories once. The run that wrote the
+        // checkpoint restored them and made one set-up after it
+        // (PlatenLoading::startAgainFromCheckpoint); so does this one.
+        bonds_->restoreBonds(checkpoint->bonds);
+        lmp_->command("run 0 post no");
+    }
 
     std::ostringstream msg;
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
@@ -841,6 +862,7 @@ void RidgeScene::load()
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
     hooks.extras = [this] { return waterColumns(); };
+    hooks.stopEjecta = [this] { return stopParticlesAtBoxEdge(); };
     if (externalWater_)
     {
         hooks.advance = externalWater_->advance;
@@ -929,6 +951,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
      .add("keel_particles", g.keelParticles)
      .add("layer_particles", g.layerParticles)
      .add("platen_speed_m_per_s", settings_.loading.speed)
+     .add("ejected_particles_stopped", long(loading_->state().frozenEjecta))
      .add("steps", loading_->state().steps)
      .add("dt", dt_)
      .add("ranks", ranks_)

@@ -20,6 +20,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 
 import h5py
@@ -92,13 +93,16 @@ def submerged_volume(z, r, level):
     return float(np.sum(math.pi * h * h * (3.0 * r - h) / 3.0))
 
 
+# Free ends: a short keel's end blocks would reach under the platen. The buoyancy share does
+# not depend on the speed: 0.0125 m/s, not the case's 5 mm/s.
+PUNCH_ENTRIES = (("test.settleTime", 0.05), ("ends.fixedLength", 0), ("test.speed", 0.0125))
+
+
 def punch(work, bin_dir):
     case = ridge_case("rubblePunch", os.path.join(work, "punch"), work,
                       controls=(("maxTravel", 0.02), ("writeInterval", 0.004), ("checkpointInterval", 0.02),
                                 ("stopAfterHalfLoad", "no")),
-                      # Free ends: a short keel's end blocks would reach under the platen. The
-                      # buoyancy share does not depend on the speed: 0.0125 m/s, not the case's 5 mm/s.
-                      entries=(("test.settleTime", 0.05), ("ends.fixedLength", 0), ("test.speed", 0.0125)))
+                      entries=PUNCH_ENTRIES)
     iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
     geometry = json.load(open(os.path.join(case, "postProcessing", "geometry.json")))
     level = geometry["waterLevel"]
@@ -111,6 +115,37 @@ def punch(work, bin_dir):
           f"blocks bonded at the ice's overlaps: {overlaps['touchingPairs']} touching pairs, largest "
           f"overlap {overlaps['max'] * 1e6:.3g} um (limit 1e-4 D = {1e-4 * diameter * 1e6:.3g} um)")
     check_buoyancy_share(case, level)
+
+
+def resume(work, bin_dir):
+    """A punch killed after a checkpoint and resumed gives the uninterrupted run's force curve to
+    the last bit. The ridge settles before the platen moves: LIGGGHTS counts those steps, the
+    checkpoint only the loading's."""
+    controls = (("maxTravel", 0.012), ("writeInterval", 0.004), ("checkpointInterval", 0.003),
+                ("stopAfterHalfLoad", "no"))
+    app = os.path.join(bin_dir, "ridgeDEM")
+    whole = ridge_case("rubblePunch", os.path.join(work, "resume", "whole"), work, controls, PUNCH_ENTRIES)
+    iceCases.run_app(app, whole, 1, ["-stage", "all"], "log.ridgeDEM")
+    killed = ridge_case("rubblePunch", os.path.join(work, "resume", "killed"), work, controls, PUNCH_ENTRIES)
+    checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    with open(os.path.join(killed, "log.ridgeDEM.1"), "w") as log:
+        run = subprocess.Popen([app, "-case", killed, "-stage", "all"], stdout=log, stderr=subprocess.STDOUT,
+                               env=env)
+        while run.poll() is None and not os.path.exists(checkpoint):
+            time.sleep(0.05)
+        run.kill()
+        run.wait()
+    finished = os.path.exists(os.path.join(killed, "postProcessing", "summary.json"))
+    check(os.path.exists(checkpoint) and not finished,
+          "the run was killed part-way, after writing a checkpoint" if not finished
+          else "the run finished before it could be killed: nothing tested")
+    iceCases.run_app(app, killed, 1, ["-stage", "all", "-resume"], "log.ridgeDEM.2")
+    resumed_log = open(os.path.join(killed, "log.ridgeDEM.2")).read()
+    a, b = iceCases.curve(whole), iceCases.curve(killed)
+    check("Resumed from the checkpoint" in resumed_log and a["time"] == b["time"] and a["force"] == b["force"],
+          f"resumed: {len(b['time'])} samples against {len(a['time'])}, time axis and force "
+          f"{'identical' if a['force'] == b['force'] else 'DIFFERENT'} to the uninterrupted run's")
 
 
 def check_buoyancy_share(case, level):
@@ -282,6 +317,8 @@ def main():
         build_keel(work, bin_dir)
     elif step == "punch":
         punch(work, bin_dir)
+    elif step == "resume":
+        resume(work, bin_dir)
     elif step == "compare":
         compare(work)
     elif step == "pullUp":
