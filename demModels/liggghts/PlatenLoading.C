@@ -212,6 +212,7 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
     update.atime = update.ntimestep * state_.dt;
     update.atimestep = update.ntimestep;
     bonds.restoreBonds(c.bonds);
+    resumedBonds_ = c.bonds;
 
     state_ = c.state;
     for (const auto& row : c.curveRows) curve_.addRow(row);
@@ -249,7 +250,16 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
          << maxSteps << " steps (" << control_.maxTravel * 1e3 << " mm of travel after contact)";
     log(plan.str());
 
-    if (!resumed_)
+    if (resumed_)
+    {
+        // Each set-up the scene made since resumeFrom stepped the bonds'
+        // histories once. The run that wrote the checkpoint restored them and
+        // made one set-up after it (startAgainFromCheckpoint); so does this one.
+        bonds.restoreBonds(resumedBonds_);
+        lmp.command("run 0");
+        resumedBonds_.clear();
+    }
+    else
     {
         st.startTime = lmp.time();
         st.liggghtsStepAtStart = lmp.step();

@@ -844,14 +844,6 @@ void RidgeScene::load()
     // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
     // registered as moving by one, so the motion gets its own.
     lmp_->command("run 0 post no");
-    if (checkpoint)
-    {
-        // Each set-up steps the bonds' histories once. The run that wrote the
-        // checkpoint restored them and made one set-up after it
-        // (PlatenLoading::startAgainFromCheckpoint); so does this one.
-        bonds_->restoreBonds(checkpoint->bonds);
-        lmp_->command("run 0 post no");
-    }
 
     std::ostringstream msg;
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
