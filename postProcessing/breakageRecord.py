@@ -1,5 +1,5 @@
 """Inputs of the failure analysis, read and checked: the breakage record (HDF5 group
-/breakage written by demModels/core/BreakageRecord.C), a platen force curve (CSV) and
+/breakage written by demModels/core/bonds/BreakageRecord.C), a platen force curve (CSV) and
 an optional geometry description (JSON, schema in failureAnalysis.py and its README).
 
 Every reading error is an InputError naming the file, the entry and what is allowed."""

@@ -6,7 +6,7 @@
                        [--out DIR] [--centre-half-width 0.25] [--interface-tolerance 0.05]
 
 Inputs (defaults relative to CASE_DIR): postProcessing/breakage.h5 (group /breakage as
-demModels/core/BreakageRecord.C writes it), postProcessing/platenForce.csv (columns time,
+demModels/core/bonds/BreakageRecord.C writes it), postProcessing/platenForce.csv (columns time,
 travel or displacement, force; others named by --columns) and, if present,
 postProcessing/geometry.json:
 

@@ -7,64 +7,21 @@
 //        DEM/in.floatingBlock
 // Writes postProcessing/{draft.csv, summary.json}, VTK/particles.pvd, log lines on stdout.
 
+#include "AppMain.H"
+#include "CommandLine.H"
 #include "FloatingBlockScene.H"
 
-#include "InputError.H"
-
-#include <mpi.h>
-
-#include <iostream>
 #include <string>
 
 int main(int argc, char** argv)
 {
-    MPI_Init(&argc, &argv);
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    int status = 0;
-    try
+    return iceDEM::runApplication(argc, argv, "floatingBlockDEM", [&](MPI_Comm comm)
     {
         std::string caseDir = ".";
-        for (int k = 1; k < argc; ++k)
-        {
-            const std::string arg = argv[k];
-            if (arg == "-case" && k + 1 < argc) caseDir = argv[++k];
-            else if (arg == "-help" || arg == "--help")
-            {
-                if (rank == 0) std::cout << "usage: floatingBlockDEM [-case DIR]" << std::endl;
-                MPI_Finalize();
-                return 0;
-            }
-            else throw iceDEM::InputError("command line", arg, "unknown option or missing value; usage: floatingBlockDEM [-case DIR]");
-        }
-        iceDEM::FloatingBlockScene scene(MPI_COMM_WORLD, caseDir);
+        iceDEM::CommandLine("floatingBlockDEM")
+            .text("-case", "DIR", "the case directory (default .)", caseDir)
+            .parse(argc, argv);
+        iceDEM::FloatingBlockScene scene(comm, caseDir);
         scene.run();
-    }
-    catch (const iceDEM::InputError& e)
-    {
-        if (rank == 0)
-        {
-            std::cerr << "\n--> floatingBlockDEM FATAL INPUT ERROR\n    " << e.what() << "\n" << std::endl;
-        }
-        status = 1;
-    }
-    catch (const iceDEM::RunError& e)
-    {
-        if (rank == 0)
-        {
-            std::cerr << "\n--> floatingBlockDEM FATAL ERROR\n    " << e.what() << "\n" << std::endl;
-        }
-        status = 3;
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "\n--> floatingBlockDEM FATAL ERROR (rank " << rank << ")\n    " << e.what() << "\n" << std::endl;
-        status = 2;
-    }
-    if (status == 2)
-    {
-        MPI_Abort(MPI_COMM_WORLD, status);
-    }
-    MPI_Finalize();
-    return status;
+    });
 }

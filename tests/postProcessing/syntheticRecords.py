@@ -1,5 +1,5 @@
 """Synthetic inputs for the failure-analysis tests: breakage records in the format of
-demModels/core/BreakageRecord.C (written with h5py), force curves, a ridge geometry, and
+demModels/core/bonds/BreakageRecord.C (written with h5py), force curves, a ridge geometry, and
 break patterns of the four ridge failure modes of scenes.md 7."""
 import json
 import os

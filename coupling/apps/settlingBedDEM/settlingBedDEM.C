@@ -13,11 +13,12 @@
 //        particles, mean and top particle height), progress on stdout.
 
 #include "AppMain.H"
+#include "CommandLine.H"
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "HydrostaticWater.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "WaterForces.H"
@@ -43,23 +44,17 @@ struct Options
     double endTime = 0.0;   // 0: controlDict's
 };
 
-const char* usage = "usage: settlingBedDEM -hydrodynamics none|hydrostatic [-case DIR] [-endTime T]";
-
 Options readOptions(int argc, char** argv)
 {
     Options o;
-    for (int k = 1; k < argc; ++k)
+    CommandLine("settlingBedDEM")
+        .choice("-hydrodynamics", {"none", "hydrostatic"}, "the water level (cfd is iceFoam's); required", o.level)
+        .text("-case", "DIR", "the case directory (default .)", o.caseDir)
+        .positive("-endTime", "S", "end time instead of system/controlDict's", o.endTime)
+        .parse(argc, argv);
+    if (o.level.empty())
     {
-        const std::string arg = argv[k];
-        if (arg == "-case" && k + 1 < argc) o.caseDir = argv[++k];
-        else if (arg == "-hydrodynamics" && k + 1 < argc) o.level = argv[++k];
-        else if (arg == "-endTime") o.endTime = positiveNumberArgument(argc, argv, k);
-        else throw InputError("command line", arg, std::string("unknown option or missing value; ") + usage);
-    }
-    if (o.level != "none" && o.level != "hydrostatic")
-    {
-        throw InputError("command line", "-hydrodynamics", "must be none or hydrostatic (got '" + o.level
-                         + "'); level cfd is iceFoam's");
+        throw InputError("command line", "-hydrodynamics", "must be given: none or hydrostatic; level cfd is iceFoam's");
     }
     return o;
 }
@@ -134,19 +129,19 @@ void run(MPI_Comm comm, const Options& o)
     meanZ /= std::max<std::size_t>(1, particles.size());
     if (rank == 0)
     {
-        JsonObject json;
-        json.add("hydrodynamics", o.level)
-            .add("particles", static_cast<long>(particles.size()))
-            .add("steps", steps)
-            .add("dt", lmp.timeStep())
-            .add("simulated_s", steps*lmp.timeStep())
-            .add("wall_s", wall)
-            .add("wall_s_per_simulated_s", wall/(steps*lmp.timeStep()))
-            .add("mean_height_m", meanZ)
-            .add("top_height_m", topZ);
+        Json json;
+        json["hydrodynamics"] = o.level;
+        json["particles"] = static_cast<long>(particles.size());
+        json["steps"] = steps;
+        json["dt"] = lmp.timeStep();
+        json["simulated_s"] = steps*lmp.timeStep();
+        json["wall_s"] = wall;
+        json["wall_s_per_simulated_s"] = wall/(steps*lmp.timeStep());
+        json["mean_height_m"] = meanZ;
+        json["top_height_m"] = topZ;
         fs::create_directories(dir / "postProcessing");
         writeFileAtomically((dir / "postProcessing" / ("settlingBedDEM_" + o.level + ".json")).string(),
-                            json.text() + "\n");
+                            jsonText(json));
         std::cout << "settlingBedDEM " << o.level << ": " << particles.size() << " particles, " << steps
                   << " steps in " << wall << " s wall clock; mean height " << meanZ << " m" << std::endl;
     }

@@ -1,11 +1,12 @@
 #include "FreezeBondShearScene.H"
+#include "CommandLine.H"
 
 #include "AppMain.H"
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "ForceCurveAnalysis.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 
 #include <chrono>
@@ -35,19 +36,12 @@ ShearTestSettings ShearTestSettings::read(int argc, char** argv)
 {
     ShearTestSettings s;
     s.specimen.halfLength = 0.1;
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
-        else if (arg == "-label" && k + 1 < argc) s.label = argv[++k];
-        else if (arg == "-shearStrength") s.shearStrength = positiveNumberArgument(argc, argv, k);
-        else if (arg == "-youngsModulus") s.youngsModulus = positiveNumberArgument(argc, argv, k);
-        else
-        {
-            throw InputError("command line", arg,
-                "unknown option or missing value; allowed: -case DIR -label NAME -shearStrength PA -youngsModulus PA");
-        }
-    }
+    CommandLine("freezeBondShearDEM")
+        .text("-case", "DIR", "the case directory (default .)", s.caseDir)
+        .text("-label", "NAME", "results go to postProcessing/runs/NAME", s.label)
+        .positive("-shearStrength", "PA", "particle-level freeze-bond shear strength", s.shearStrength)
+        .positive("-youngsModulus", "PA", "freeze-bond Young's modulus", s.youngsModulus)
+        .parse(argc, argv);
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/shearTestProperties");
     d.checkKeys({"specimen", "loading"});
     s.specimen = SpecimenGeometry::read(d.subDict("specimen"), s.specimen);
@@ -184,13 +178,13 @@ void FreezeBondShearScene::load()
     msg << "Load " << peakLoad_ << " N at failure: shear " << shearFactor*peakLoad_ << " N across the plane, tau_max "
         << 4.0/3.0*shearFactor*peakLoad_/area_*1e-3 << " kPa (a = " << a_ << "); effective shear modulus "
         << effectiveShearModulus_ << " Pa" << (failed_ ? "" : " (NOT failed: raise loading.maxLoad)");
-    specimen_.log(msg.str());
+    specimen_.context().log(msg.str());
 }
 
 
 void FreezeBondShearScene::writeSummary(double wallSeconds) const
 {
-    if (specimen_.rank() != 0)
+    if (specimen_.context().rank() != 0)
     {
         return;
     }
@@ -203,22 +197,22 @@ void FreezeBondShearScene::writeSummary(double wallSeconds) const
     {
         shearBreaks += e.mode == BreakMode::shear;
     }
-    JsonObject j;
-    j.add("case", "freezeBondShear")
-     .add("label", settings_.label)
-     .add("particle_shear_strength_Pa", stats.meanShear)
-     .add("freeze_youngs_modulus_Pa", specimen_.ice().family(BondFamily::freeze).youngsModulus)
-     .add("a", a_)
-     .add("peak_load_N", peakLoad_)
-     .add("effective_shear_strength_Pa", 4.0/3.0*shearFactor*peakLoad_/area_)
-     .add("effective_shear_modulus_Pa", effectiveShearModulus_)
-     .add("failed", failed_)
-     .add("freeze_bonds", long(stats.bonds))
-     .add("breaks_in_shear", shearBreaks)
-     .add("breaks", long(specimen_.breakage().size()))
-     .add("confinement_pressure_Pa", settings_.confinementPressure);
+    Json j;
+    j["case"] = "freezeBondShear";
+    j["label"] = settings_.label;
+    j["particle_shear_strength_Pa"] = stats.meanShear;
+    j["freeze_youngs_modulus_Pa"] = specimen_.ice().family(BondFamily::freeze).youngsModulus;
+    j["a"] = a_;
+    j["peak_load_N"] = peakLoad_;
+    j["effective_shear_strength_Pa"] = 4.0/3.0*shearFactor*peakLoad_/area_;
+    j["effective_shear_modulus_Pa"] = effectiveShearModulus_;
+    j["failed"] = failed_;
+    j["freeze_bonds"] = long(stats.bonds);
+    j["breaks_in_shear"] = shearBreaks;
+    j["breaks"] = long(specimen_.breakage().size());
+    j["confinement_pressure_Pa"] = settings_.confinementPressure;
     specimen_.addRunFigures(j, wallSeconds);
-    writeFileAtomically(dir + "/summary.json", j.text() + "\n");
+    writeFileAtomically(dir + "/summary.json", jsonText(j));
 }
 
 
@@ -241,7 +235,7 @@ void FreezeBondShearScene::run()
     });
     if (settings_.outerLayer >= specimen_.layersPerHalf() - 1)
     {
-        throw InputError(specimen_.path("constant/shearTestProperties"), "loading.outerLayer",
+        throw InputError(specimen_.context().path("constant/shearTestProperties"), "loading.outerLayer",
             "must lie inside the specimen, below " + std::to_string(specimen_.layersPerHalf() - 1));
     }
     specimen_.start("in.freezeBondShear", {}, 0.05);
@@ -250,7 +244,7 @@ void FreezeBondShearScene::run()
     load();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeSummary(wall);
-    specimen_.log("Wall time " + formatDuration(wall) + "; results in postProcessing/runs/" + settings_.label);
+    specimen_.context().log("Wall time " + formatDuration(wall) + "; results in postProcessing/runs/" + settings_.label);
 }
 
 } // namespace iceDEM

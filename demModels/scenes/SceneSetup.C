@@ -11,14 +11,6 @@
 namespace iceDEM
 {
 
-std::string exactNumber(double v)
-{
-    std::ostringstream out;
-    out << std::setprecision(17) << v;
-    return out.str();
-}
-
-
 void writeLiggghtsData
 (
     const std::string& path,

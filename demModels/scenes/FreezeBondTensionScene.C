@@ -1,10 +1,11 @@
 #include "FreezeBondTensionScene.H"
+#include "CommandLine.H"
 
 #include "AppMain.H"
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 
 
@@ -34,27 +35,12 @@ TensionTestSettings TensionTestSettings::read(int argc, char** argv)
 {
     TensionTestSettings s;
     double pressure = -1.0, time = -1.0;
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        auto value = [&]()
-        {
-            if (k + 1 >= argc)
-            {
-                throw InputError("command line", arg, "needs a value");
-            }
-            return std::string(argv[++k]);
-        };
-        if (arg == "-case") s.caseDir = value();
-        else if (arg == "-label") s.label = value();
-        else if (arg == "-pressure") pressure = positiveNumberArgument(argc, argv, k);
-        else if (arg == "-time") time = positiveNumberArgument(argc, argv, k);
-        else
-        {
-            throw InputError("command line", arg,
-                "unknown option; allowed: -case DIR -label NAME -pressure PA -time MIN");
-        }
-    }
+    CommandLine("freezeBondTensionDEM")
+        .text("-case", "DIR", "the case directory (default .)", s.caseDir)
+        .text("-label", "NAME", "results go to postProcessing/runs/NAME", s.label)
+        .positive("-pressure", "PA", "confinement pressure instead of loading.confinementPressure", pressure)
+        .positive("-time", "MIN", "submersion time instead of constant/freezeBondProperties'", time)
+        .parse(argc, argv);
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/tensionTestProperties");
     d.checkKeys({"specimen", "loading"});
     s.specimen = SpecimenGeometry::read(d.subDict("specimen"), s.specimen);
@@ -104,7 +90,7 @@ void FreezeBondTensionScene::confine()
     std::ostringstream msg;
     msg << "Confined at " << settings_.confinementPressure*1e-3 << " kPa for " << settings_.confinementTime
         << " s: lower-grip reaction " << confinementReaction_ << " N of " << load << " N applied";
-    specimen_.log(msg.str());
+    specimen_.context().log(msg.str());
     if (std::abs(confinementReaction_/load - 1.0) > 0.02)
     {
         throw RunError("the specimen did not come to rest under the confinement (reaction "
@@ -149,13 +135,13 @@ void FreezeBondTensionScene::pull()
     std::ostringstream msg;
     msg << "Pulled " << curve_.row(curve_.nRows() - 1)[1]*1e3 << " mm: peak " << peakForce_ << " N, strength "
         << peakForce_/area_*1e-3 << " kPa" << (failed ? "" : " (NOT fully separated: raise loading.maxPull)");
-    specimen_.log(msg.str());
+    specimen_.context().log(msg.str());
 }
 
 
 void FreezeBondTensionScene::writeSummary(double wallSeconds) const
 {
-    if (specimen_.rank() != 0)
+    if (specimen_.context().rank() != 0)
     {
         return;
     }
@@ -168,27 +154,27 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
     }
     const FreezeBondingStatistics& stats = specimen_.freezeStatistics();
     const FreezeBondStrengthModel& model = specimen_.strengthModel();
-    JsonObject j;
-    j.add("case", "freezeBondTension")
-     .add("label", settings_.label)
-     .add("confinement_pressure_Pa", settings_.confinementPressure)
-     .add("submersion_time_min", settings_.submersionTime)
-     .add("model_slope", model.slope())
-     .add("model_intercept_Pa", model.intercept())
-     .add("area_correction", model.areaCorrection())
-     .add("peak_force_N", peakForce_)
-     .add("strength_Pa", peakForce_/area_)
-     .add("pull_at_peak_m", pullAtPeak_)
-     .add("specimen_area_m2", area_)
-     .add("freeze_bonds", long(stats.bonds))
-     .add("mean_measured_confinement_Pa", stats.meanConfinement)
-     .add("max_measured_confinement_Pa", stats.maxConfinement)
-     .add("confinement_reaction_N", confinementReaction_)
-     .add("bond_tensile_strength_mean_Pa", stats.meanTensile)
-     .add("bond_tensile_strength_sd_Pa", stats.sdTensile)
-     .add("bond_tensile_strengths_Pa", strengths);
+    Json j;
+    j["case"] = "freezeBondTension";
+    j["label"] = settings_.label;
+    j["confinement_pressure_Pa"] = settings_.confinementPressure;
+    j["submersion_time_min"] = settings_.submersionTime;
+    j["model_slope"] = model.slope();
+    j["model_intercept_Pa"] = model.intercept();
+    j["area_correction"] = model.areaCorrection();
+    j["peak_force_N"] = peakForce_;
+    j["strength_Pa"] = peakForce_/area_;
+    j["pull_at_peak_m"] = pullAtPeak_;
+    j["specimen_area_m2"] = area_;
+    j["freeze_bonds"] = long(stats.bonds);
+    j["mean_measured_confinement_Pa"] = stats.meanConfinement;
+    j["max_measured_confinement_Pa"] = stats.maxConfinement;
+    j["confinement_reaction_N"] = confinementReaction_;
+    j["bond_tensile_strength_mean_Pa"] = stats.meanTensile;
+    j["bond_tensile_strength_sd_Pa"] = stats.sdTensile;
+    j["bond_tensile_strengths_Pa"] = strengths;
     specimen_.addRunFigures(j, wallSeconds);
-    writeFileAtomically(dir + "/summary.json", j.text() + "\n");
+    writeFileAtomically(dir + "/summary.json", jsonText(j));
 }
 
 
@@ -206,7 +192,7 @@ void FreezeBondTensionScene::run()
     pull();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeSummary(wall);
-    specimen_.log("Wall time " + formatDuration(wall) + "; results in postProcessing/runs/" + settings_.label);
+    specimen_.context().log("Wall time " + formatDuration(wall) + "; results in postProcessing/runs/" + settings_.label);
 }
 
 } // namespace iceDEM

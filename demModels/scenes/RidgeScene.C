@@ -1,4 +1,6 @@
 #include "RidgeScene.H"
+#include "CommandLine.H"
+#include "Format.H"
 
 #include "AtomicFile.H"
 #include "BondBuilder.H"
@@ -7,7 +9,7 @@
 #include "FreezeBonding.H"
 #include "IceBondForces.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "SceneSetup.H"
@@ -33,60 +35,22 @@ namespace iceDEM
 namespace
 {
 
-constexpr int mobileType = 1;
-constexpr int fixedType = 2;
+constexpr int mobileType = RidgeLoadTest::mobileType;
+constexpr int fixedType = RidgeLoadTest::fixedType;
 constexpr int boxTypes = 3;     // 3: the box walls
-constexpr double platenOverhang = 0.05;     // m the platen reaches past each side wall
 
-std::string number(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(6) << v;
-    return s.str();
-}
-
-RidgeTest ridgeTestFromName(const Dictionary& d, const std::string& key)
-{
-    const std::string name = d.getChoice(key, {"flexure", "pullUp", "directShear"});
-    return name == "flexure" ? RidgeTest::flexure
-        : name == "pullUp" ? RidgeTest::pullUp
-        : RidgeTest::directShear;
-}
 
 } // namespace
-
-
-std::string toString(RidgeTest t)
-{
-    switch (t)
-    {
-        case RidgeTest::flexure: return "flexure";
-        case RidgeTest::pullUp: return "pullUp";
-        case RidgeTest::directShear: return "directShear";
-    }
-    return "?";
-}
 
 
 RidgeSettings RidgeSettings::read(int argc, char** argv)
 {
     RidgeSettings s;
-    const std::string usage = "allowed: -case DIR -stage assemble|load|all -resume";
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
-        else if (arg == "-stage" && k + 1 < argc)
-        {
-            s.stage = argv[++k];
-            if (s.stage != "assemble" && s.stage != "load" && s.stage != "all")
-            {
-                throw InputError("command line", "-stage", "'" + s.stage + "' is not one of: assemble load all");
-            }
-        }
-        else if (arg == "-resume") s.resume = true;
-        else throw InputError("command line", arg, "unknown option or missing value; " + usage);
-    }
+    CommandLine("ridgeDEM")
+        .text("-case", "DIR", "the case directory (default .)", s.caseDir)
+        .choice("-stage", {"assemble", "load", "all"}, "which stage to run (default all)", s.stage)
+        .flag("-resume", "load: continue from the last checkpoint", s.resume)
+        .parse(argc, argv);
     // At the cfd level system/controlDict is OpenFOAM's (icePunchFoam).
     const bool cfd = WaterProperties::readCase(s.caseDir, true).level == WaterLevel::cfd;
     RidgeSettings fromCase = readCase(s.caseDir, cfd ? "system/loadingDict" : "system/controlDict");
@@ -166,8 +130,10 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     }
 
     const Dictionary& t = d.subDict("test");
-    t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap"});
-    s.test = ridgeTestFromName(t, "type");
+    t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap",
+                 "referenceFlexuralStrength"});
+    s.test = t.getChoice("type", RidgeLoadTest::names());
+    s.referenceFlexuralStrength = t.getPositiveScalarOrDefault("referenceFlexuralStrength", 0.0);
     s.platenLength = t.getPositiveScalarOrDefault("platenLength", s.platenLength);
     s.platenHeight = t.getPositiveScalarOrDefault("platenHeight", s.platenHeight);
     s.settleTime = t.getScalarOrDefault("settleTime", s.settleTime);
@@ -175,9 +141,9 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     s.loading.speed = t.getPositiveScalarOrDefault("speed", s.loading.speed);
     s.loading.initialGap = t.getScalarOrDefault("initialGap", 0.002);
     if (s.loading.initialGap < 0.0) t.fail("initialGap", "must not be negative");
-    if (s.test != RidgeTest::flexure && s.layer.thickness <= 0.0)
+    if (RidgeLoadTest::New(s.test, s)->needsLayer() && s.layer.thickness <= 0.0)
     {
-        t.fail("type", toString(s.test) + " tests the bond between keel and consolidated layer: "
+        t.fail("type", s.test + " tests the bond between keel and consolidated layer: "
                "consolidatedLayer.thickness must be positive");
     }
 
@@ -194,18 +160,17 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
 
 RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const ExternalWater* externalWater)
 :
-    comm_(comm),
+    context_(comm, settings.caseDir, externalWater ? "icePunchFoam" : "ridgeDEM"),
     settings_(settings),
+    test_(RidgeLoadTest::New(settings_.test, settings_)),
     externalWater_(externalWater)
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path("constant/iceProperties"));
-    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    ice_ = IceProperties::read(context_.path("constant/iceProperties"));
+    requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
+    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
     if (strengthModel_.areaCorrectionKind() != FreezeBondStrengthModel::AreaCorrectionKind::given)
     {
-        throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
+        throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
             "a ridge needs `given` (c_f of its keel, see the keel's summary.json); the block shapes "
             "that heatBalance needs are not kept with the settled keel");
     }
@@ -213,25 +178,25 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
     const bool loads = settings_.stage == "load" || settings_.stage == "all";
     if (externalWater_ && water_.level != WaterLevel::cfd)
     {
-        throw InputError(path("constant/couplingProperties"), "waterLevel",
+        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
             "'" + toString(water_.level) + "': icePunchFoam solves the water of the loading stage; "
             "allowed here: cfd (hydrostatic: ridgeDEM)");
     }
     if (!externalWater_ && water_.level == WaterLevel::cfd && loads)
     {
-        throw InputError(path("constant/couplingProperties"), "waterLevel",
+        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
             "cfd: ridgeDEM loads in still (hydrostatic) water and only assembles at the cfd level "
             "(-stage assemble); the loading stage at the cfd level runs in icePunchFoam "
             "(cases/rubblePunch: ./Allrun -water cfd)");
     }
     if (!externalWater_ && water_.level != WaterLevel::hydrostatic && water_.level != WaterLevel::cfd)
     {
-        throw InputError(path("constant/couplingProperties"), "waterLevel",
+        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
             "ridgeDEM runs in still water: allowed here: hydrostatic (cfd: icePunchFoam, see coupling/README.md)");
     }
     if (water_.level == WaterLevel::cfd && !water_.hydrostatic.floatingSurface && settings_.stage != "load")
     {
-        throw InputError(path("constant/couplingProperties"), "hydrostatic",
+        throw InputError(context_.path("constant/couplingProperties"), "hydrostatic",
             "at the cfd level the ridge is still assembled in still water where it floats: needs "
             "hydrostatic { surfaceLevel floating; rho; mu; } (the fluid mesh ends at that level)");
     }
@@ -241,30 +206,17 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
 RidgeScene::~RidgeScene() = default;
 
 
-std::string RidgeScene::path(const std::string& relative) const
-{
-    return settings_.caseDir + "/" + relative;
-}
-
-
-void RidgeScene::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 void RidgeScene::run()
 {
-    log("ridgeDEM: " + toString(settings_.test) + " test of a ridge, case " + settings_.caseDir + ", "
-        + std::to_string(ranks_) + " rank(s)");
+    context_.log("ridgeDEM: " + settings_.test + " test of a ridge, case " + settings_.caseDir + ", "
+        + std::to_string(context_.ranks()) + " rank(s)");
     if (settings_.stage == "assemble" || settings_.stage == "all")
     {
-        if (settings_.resume && std::filesystem::exists(path("DEM/ridge.h5")))
+        if (settings_.resume && std::filesystem::exists(context_.path("DEM/ridge.h5")))
         {
-            log("Resuming: the ridge is already assembled (DEM/ridge.h5)");
+            context_.log("Resuming: the ridge is already assembled (DEM/ridge.h5)");
         }
         else
         {
@@ -289,7 +241,7 @@ void RidgeScene::chooseContactsAndStep(const std::vector<ParticleSpec>& particle
     const double minMass = ice.material.density * 4.0 / 3.0 * M_PI * std::pow(minRadius, 3);
     contact_ = ContactParameters::of(ice, meanDiameter, minMass);
     const TimeStepLimits limits = timeStepLimits(ice, minRadius, ice.maxBondsPerParticle);
-    dt_ = chooseTimeStep(ice, limits, path("constant/iceProperties"));
+    dt_ = chooseTimeStep(ice, limits, context_.path("constant/iceProperties"));
     particleCount_ = static_cast<long>(particles.size());
 }
 
@@ -327,7 +279,7 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         << " -> " << after.touchingPairs << ", mean overlap " << before.meanOverlap * 1e6 << " -> "
         << after.meanOverlap * 1e6 << " um, largest " << before.maxOverlap * 1e6 << " -> "
         << after.maxOverlap * 1e6 << " um";
-    log(msg.str());
+    context_.log(msg.str());
 }
 
 
@@ -360,20 +312,18 @@ void RidgeScene::startLiggghts
     const double margin = 0.05;
     boxLow_ = Vec3(-margin, -margin, -margin);
     boxHigh_ = Vec3(settings_.layer.length + margin, settings_.layer.width + margin, top + settings_.loading.maxTravel + 0.5);
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        std::filesystem::create_directories(path("DEM"));
-        std::filesystem::create_directories(path("postProcessing"));
+        std::filesystem::create_directories(context_.path("DEM"));
+        std::filesystem::create_directories(context_.path("postProcessing"));
         writeLiggghtsData
         (
-            path("DEM/ridge.data"), "ridge written by ridgeDEM", particles, ice.material.density, boxLow_, boxHigh_,
+            context_.path("DEM/ridge.data"), "ridge written by ridgeDEM", particles, ice.material.density, boxLow_, boxHigh_,
             boxTypes, [&](const ParticleSpec& p) { return types[&p - particles.data()]; }
         );
     }
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
 
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
     const double skin = 0.2 * maxRadius;
     ScriptVariables variables
     {
@@ -387,13 +337,7 @@ void RidgeScene::startLiggghts
     };
     const ScriptVariables contacts = boxContactVariables(contact_);
     variables.insert(variables.end(), contacts.begin(), contacts.end());
-    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "ridgeDEM");
-    const std::string script = path("DEM/in.ridge");
-    if (!std::filesystem::exists(script))
-    {
-        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp_->runScript(script);
+    lmp_ = context_.startLiggghts(variables, "DEM/in.ridge");
 }
 
 
@@ -402,7 +346,7 @@ void RidgeScene::assemble()
     const auto wallStart = std::chrono::steady_clock::now();
     if (!std::filesystem::exists(settings_.keelFile))
     {
-        throw InputError(path("constant/ridgeProperties"), "keel.settledRubble",
+        throw InputError(context_.path("constant/ridgeProperties"), "keel.settledRubble",
             "'" + settings_.keelFile + "' does not exist: build the keel first (its rubble case's "
             "./Allrun, or rubbleDEM -stage settle)");
     }
@@ -431,7 +375,7 @@ void RidgeScene::assemble()
             << settings_.trimDepth << " m; consolidated layer " << settings_.layer.thickness << " m of "
             << layerCount << " particles from z = " << layout.clBottom << " m; water surface at "
             << waterParameters.surfaceLevel << " m (" << (waterParameters.floatingSurface ? "where the ridge floats" : "given") << ")";
-        log(msg.str());
+        context_.log(msg.str());
     }
 
     // Pressing: the keel with soft contacts and unbreakable blocks (as it
@@ -440,7 +384,7 @@ void RidgeScene::assemble()
     std::vector<int> types(layout.particles.size(), mobileType);
     for (std::size_t k = layout.keelParticles; k < types.size(); ++k) types[k] = fixedType;
     chooseContactsAndStep(layout.particles, soft);
-    startLiggghts(layout.particles, types, soft, "read_data " + path("DEM/ridge.data"));
+    startLiggghts(layout.particles, types, soft, "read_data " + context_.path("DEM/ridge.data"));
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
@@ -463,15 +407,15 @@ void RidgeScene::assemble()
     const long relaxSteps = layerCount > 0 ? std::lround(settings_.relaxTime / dt_) : 0;
     if (pressSteps > 0)
     {
-        log("Pressing the layer " + number(settings_.pressDepth * 1e3) + " mm into the keel at "
-            + number(settings_.pressSpeed) + " m/s (" + std::to_string(pressSteps) + " steps of " + number(dt_) + " s)");
+        context_.log("Pressing the layer " + formatNumber(settings_.pressDepth * 1e3) + " mm into the keel at "
+            + formatNumber(settings_.pressSpeed) + " m/s (" + std::to_string(pressSteps) + " steps of " + formatNumber(dt_) + " s)");
         lmp_->command("fix pressLayer layer move linear 0 0 " + exactNumber(-settings_.pressSpeed));
         lmp_->command("run " + std::to_string(pressSteps));
         lmp_->command("unfix pressLayer");
     }
     if (relaxSteps > 0)
     {
-        log("Keel settling under the held layer for " + number(settings_.relaxTime) + " s ("
+        context_.log("Keel settling under the held layer for " + formatNumber(settings_.relaxTime) + " s ("
             + std::to_string(relaxSteps) + " steps)");
         lmp_->command("velocity layer set 0 0 0");
         lmp_->command("run " + std::to_string(relaxSteps));
@@ -531,18 +475,18 @@ void RidgeScene::assemble()
     ridge.time = 0.0;
     ridge.waterLevel = waterParameters.surfaceLevel;
     ridge.description = "ridge assembled by ridgeDEM from " + settings_.keelFile + ": keel trimmed by "
-        + number(settings_.trimDepth) + " m, consolidated layer " + number(settings_.layer.thickness)
-        + " m (block " + std::to_string(layout.clBlock) + "), pressed " + number(settings_.pressDepth) + " m";
+        + formatNumber(settings_.trimDepth) + " m, consolidated layer " + formatNumber(settings_.layer.thickness)
+        + " m (block " + std::to_string(layout.clBlock) + "), pressed " + formatNumber(settings_.pressDepth) + " m";
 
     RidgeGeometry geometry = measureRidge(ridge.particles, layout.clBlock, settings_.layer.length, settings_.layer.width);
     geometry.waterLevel = ridge.waterLevel;
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        ridge.write(path("DEM/ridge.h5"));
+        ridge.write(context_.path("DEM/ridge.h5"));
         writeGeometry(geometry, ridge.particles);
     }
     // The load stage reads ridge.h5 on every rank next (-stage all).
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
         << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
@@ -551,7 +495,7 @@ void RidgeScene::assemble()
         << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
         << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count())
         << "; saved DEM/ridge.h5";
-    log(msg.str());
+    context_.log(msg.str());
 
     bonds_.reset();
     waterForces_.reset();
@@ -571,22 +515,31 @@ void RidgeScene::writeGeometry(const RidgeGeometry& g, const std::vector<SavedPa
     const OverlapStatistics atBonding = overlapStatistics(specs, positions);
 
     // The schema of postProcessing/failureAnalysis.py (postProcessing/README.md).
-    std::ostringstream j;
-    j << std::setprecision(10) << "{\"length\": " << g.length << ", \"width\": " << g.width
-      << ", \"x0\": 0, \"y0\": 0,\n \"layers\": [{\"name\": \"keel\", \"zBottom\": " << g.keelBottom
-      << ", \"zTop\": " << g.keelTop << "}";
+    Json layers = Json::array({{{"name", "keel"}, {"zBottom", g.keelBottom}, {"zTop", g.keelTop}}});
     if (g.hasLayer())
     {
-        j << ",\n            {\"name\": \"consolidatedLayer\", \"zBottom\": " << g.clBottom
-          << ", \"zTop\": " << g.clTop << "}";
+        layers.push_back({{"name", "consolidatedLayer"}, {"zBottom", g.clBottom}, {"zTop", g.clTop}});
     }
-    j << "],\n \"loadX\": " << 0.5 * g.length << ", \"loadHalfLength\": " << 0.5 * settings_.platenLength
-      << ", \"supports\": [" << settings_.fixedEndLength << ", " << g.length - settings_.fixedEndLength
-      << "], \"waterLevel\": " << g.waterLevel << ",\n \"particleRadius\": " << g.particleRadius
-      << ", \"depth\": " << g.depth() << ", \"test\": \"" << toString(settings_.test) << "\",\n"
-      << " \"overlapsBetweenBlocksAtBonding\": {\"touchingPairs\": " << atBonding.touchingPairs
-      << ", \"mean\": " << atBonding.meanOverlap << ", \"max\": " << atBonding.maxOverlap << "}}\n";
-    writeFileAtomically(path("postProcessing/geometry.json"), j.str());
+    Json j;
+    j["length"] = g.length;
+    j["width"] = g.width;
+    j["x0"] = 0;
+    j["y0"] = 0;
+    j["layers"] = layers;
+    j["loadX"] = 0.5 * g.length;
+    j["loadHalfLength"] = 0.5 * settings_.platenLength;
+    j["supports"] = {settings_.fixedEndLength, g.length - settings_.fixedEndLength};
+    j["waterLevel"] = g.waterLevel;
+    j["particleRadius"] = g.particleRadius;
+    j["depth"] = g.depth();
+    j["test"] = settings_.test;
+    j["overlapsBetweenBlocksAtBonding"] =
+    {
+        {"touchingPairs", atBonding.touchingPairs},
+        {"mean", atBonding.meanOverlap},
+        {"max", atBonding.maxOverlap}
+    };
+    writeFileAtomically(context_.path("postProcessing/geometry.json"), jsonText(j));
 }
 
 
@@ -604,21 +557,7 @@ long RidgeScene::stopParticlesAtBoxEdge()
 
 double RidgeScene::testForce() const
 {
-    if (settings_.test == RidgeTest::flexure)
-    {
-        // Force of the ice on the platen, which they push up.
-        return lmp_->fix("platen").compute_vector(2);
-    }
-    // What the actuator holding the layer must apply: minus the net force of
-    // bonds, contacts, gravity and water on the layer's particles.
-    const int axis = settings_.test == RidgeTest::pullUp ? 2 : 0;
-    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
-    double local = 0.0;
-    for (int i = 0; i < atom.nlocal; ++i)
-    {
-        if (atom.tag[i] >= layerFirstTag_) local -= atom.f[i][axis];
-    }
-    return sumOverRanks(comm_, local);
+    return test_->force(*lmp_, context_.comm(), layerFirstTag_);
 }
 
 
@@ -644,7 +583,7 @@ std::vector<double> RidgeScene::waterColumns()
         {
             local += submergedSphereVolume(atom.radius[i], level - (atom.x[i][2] - atom.radius[i]));
         }
-        submerged = sumOverRanks(comm_, local);
+        submerged = sumOverRanks(context_.comm(), local);
         buoyancy = water.buoyancy(submerged);
     }
     if (submergedAtStart_ < 0.0)
@@ -652,13 +591,10 @@ std::vector<double> RidgeScene::waterColumns()
         submergedAtStart_ = submerged;
     }
     const double share = water.buoyancy(submerged - submergedAtStart_);
-    double platenBuoyancy = 0.0;
-    if (settings_.test == RidgeTest::flexure)
-    {
-        const double bottom = platenBottom_ - settings_.loading.travelAt(lmp_->time() - loading_->state().startTime);
-        platenBuoyancy = water.buoyancy(water.submergedPrismVolume(
-            settings_.platenLength * (settings_.layer.width + 2.0 * platenOverhang), bottom, bottom + settings_.platenHeight));
-    }
+    const double platenBuoyancy = test_->loadingBodyBuoyancy
+    (
+        water, settings_.loading.travelAt(lmp_->time() - loading_->state().startTime)
+    );
     std::vector<double> columns{buoyancy, submerged, share, platenBuoyancy};
     if (externalWater_)
     {
@@ -684,17 +620,17 @@ void RidgeScene::advance(long steps)
 void RidgeScene::load()
 {
     const auto wallStart = std::chrono::steady_clock::now();
-    if (!std::filesystem::exists(path("DEM/ridge.h5")))
+    if (!std::filesystem::exists(context_.path("DEM/ridge.h5")))
     {
-        throw InputError(path("DEM/ridge.h5"), "(file)", "missing: run the assemble stage first (-stage assemble)");
+        throw InputError(context_.path("DEM/ridge.h5"), "(file)", "missing: run the assemble stage first (-stage assemble)");
     }
-    const SavedRubble ridge = SavedRubble::read(path("DEM/ridge.h5"));
+    const SavedRubble ridge = SavedRubble::read(context_.path("DEM/ridge.h5"));
     int maxBlock = -1;
     for (const SavedParticle& p : ridge.particles) maxBlock = std::max(maxBlock, p.block);
     const int layerBlock = settings_.layer.thickness > 0.0 ? maxBlock : -1;
     RidgeGeometry geometry = measureRidge(ridge.particles, layerBlock, settings_.layer.length, settings_.layer.width);
     geometry.waterLevel = ridge.waterLevel;
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
         writeGeometry(geometry, ridge.particles);
     }
@@ -710,10 +646,7 @@ void RidgeScene::load()
         particles[k].position = s.position;
         particles[k].radius = s.radius;
         particles[k].block = s.block;
-        // Keel-bond tests hold the keel and move the layer (fix move): neither is
-        // integrated. The layer keeps type 1 (LIGGGHTS' granular models need it).
-        types[k] = settings_.test == RidgeTest::flexure ? s.type
-            : static_cast<long>(k) >= geometry.keelParticles ? mobileType : fixedType;
+        types[k] = test_->particleType(s.type, static_cast<long>(k) >= geometry.keelParticles);
         if (std::abs(s.position.x() - xLoad) < 0.5 * settings_.platenLength + s.radius)
         {
             topUnderPlaten = std::max(topUnderPlaten, s.position.z() + s.radius);
@@ -732,7 +665,7 @@ void RidgeScene::load()
     }
     loading_ = std::make_unique<PlatenLoading>
     (
-        comm_, settings_.caseDir, externalWater_ ? "icePunchFoam" : "ridgeDEM", settings_.loading, dt_,
+        context_.comm(), settings_.caseDir, externalWater_ ? "icePunchFoam" : "ridgeDEM", settings_.loading, dt_,
         particleCount_, fixedType, waterColumnNames
     );
     std::unique_ptr<Checkpoint> checkpoint;
@@ -743,34 +676,14 @@ void RidgeScene::load()
     startLiggghts
     (
         particles, types, ice_,
-        checkpoint ? "read_restart " + loading_->restartFile(*checkpoint) : "read_data " + path("DEM/ridge.data")
+        checkpoint ? "read_restart " + loading_->restartFile(*checkpoint) : "read_data " + context_.path("DEM/ridge.data")
     );
-    if (settings_.test != RidgeTest::flexure)
+    if (!test_->integratesParticles())
     {
         lmp_->command("unfix integrate");
     }
 
-    // The test's own fixes come before the water and the bonds (the bonds'
-    // hysteretic damping acts on the total force).
-    platenBottom_ = topUnderPlaten + settings_.loading.initialGap;
-    if (settings_.test == RidgeTest::flexure)
-    {
-        if (rank_ == 0)
-        {
-            writeBoxStl
-            (
-                path("DEM/platen.stl"),
-                Vec3(xLoad - 0.5 * settings_.platenLength, -platenOverhang, platenBottom_),
-                Vec3(xLoad + 0.5 * settings_.platenLength, settings_.layer.width + platenOverhang,
-                     platenBottom_ + settings_.platenHeight),
-                "platen"
-            );
-        }
-        MPI_Barrier(comm_);
-        lmp_->command("fix platen all mesh/surface/stress file " + path("DEM/platen.stl") + " type 1");
-        lmp_->command("fix platenWall all wall/gran model hooke/stiffness tangential history rolling_friction epsd2 "
-                      "mesh n_meshes 1 meshes platen absolute_damping on");
-    }
+    test_->defineFixes(*lmp_, context_, topUnderPlaten);
     if (externalWater_)
     {
         HydrostaticWaterParameters surface;
@@ -790,7 +703,7 @@ void RidgeScene::load()
     bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
-    if (settings_.test == RidgeTest::flexure && waterForces_)
+    if (test_->integratesParticles() && waterForces_)
     {
         // Not in the keel-bond tests: nothing is integrated there, and the fix
         // would scale the layer's forces that testForce() sums by m / (m + m_a).
@@ -807,7 +720,7 @@ void RidgeScene::load()
     }
     lmp_->command("run 0");
 
-    const long settleSteps = settings_.test == RidgeTest::flexure ? std::lround(settings_.settleTime / dt_) : 0;
+    const long settleSteps = test_->settlesFirst() ? std::lround(settings_.settleTime / dt_) : 0;
     if (!checkpoint && settleSteps > 0)
     {
         // The bonds were made at the pressed geometry with no load in them:
@@ -818,8 +731,8 @@ void RidgeScene::load()
         bonds_->suspendBreakage(true);
         advance(settleSteps);
         bonds_->suspendBreakage(false);
-        log("Settled under gravity and buoyancy for " + number(settings_.settleTime) + " s: kinetic energy "
-            + number(totalKineticEnergy(*lmp_)) + " J");
+        context_.log("Settled under gravity and buoyancy for " + formatNumber(settings_.settleTime) + " s: kinetic energy "
+            + formatNumber(totalKineticEnergy(*lmp_)) + " J");
     }
     // The test moves off smoothly (loading.rampTravel): a sudden start would
     // hit the ice with a force spike.
@@ -827,20 +740,7 @@ void RidgeScene::load()
     const std::string speed = settings_.loading.speedFormula(startStep, dt_);
     const std::string travel = settings_.loading.travelFormula(startStep, dt_);
     lmp_->command("variable zero equal 0");
-    if (settings_.test == RidgeTest::flexure)
-    {
-        lmp_->command("variable platenVz equal -" + speed);
-        lmp_->command("fix movePlaten all move/mesh mesh platen linear/variable v_zero v_zero v_platenVz");
-    }
-    else
-    {
-        lmp_->command("variable layerV equal " + speed);
-        lmp_->command("variable layerD equal " + travel);
-        // Every component given: a NULL one would be integrated from the forces.
-        lmp_->command(settings_.test == RidgeTest::pullUp
-            ? "fix moveLayer layer move variable v_zero v_zero v_layerD v_zero v_zero v_layerV"
-            : "fix moveLayer layer move variable v_layerD v_zero v_zero v_layerV v_zero v_zero");
-    }
+    test_->startMotion(*lmp_, speed, travel);
     // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
     // registered as moving by one, so the motion gets its own.
     lmp_->command("run 0 post no");
@@ -849,7 +749,7 @@ void RidgeScene::load()
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
         << geometry.layerParticles << " layer), " << ridge.bonds.size() << " bonds, depth "
         << geometry.depth() << " m, water surface " << ridge.waterLevel << " m, time step " << dt_ << " s";
-    log(msg.str());
+    context_.log(msg.str());
 
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
@@ -864,14 +764,14 @@ void RidgeScene::load()
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     writeSummary(geometry, wall);
-    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
         + std::to_string(loading_->breakage().size()) + " bonds broken");
 }
 
 
 void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
 {
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -903,55 +803,48 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
         interfaceBroken += (e.tagA >= layerFirstTag_) != (e.tagB >= layerFirstTag_);
     }
 
-    const double L = g.length, B = g.width, D = g.depth(), sigmaF1 = 902e3;
-    JsonObject byMode;
-    byMode.add("tension", long(breaks.count(BreakMode::tension))).add("shear", long(breaks.count(BreakMode::shear)))
-          .add("twist", long(breaks.count(BreakMode::twist))).add("bending", long(breaks.count(BreakMode::bending)));
-    JsonObject byFamily;
-    byFamily.add("ice", long(breaks.count(BondFamily::ice))).add("freeze", long(freezeBroken));
+    Json byMode;
+    byMode["tension"] = long(breaks.count(BreakMode::tension));
+    byMode["shear"] = long(breaks.count(BreakMode::shear));
+    byMode["twist"] = long(breaks.count(BreakMode::twist));
+    byMode["bending"] = long(breaks.count(BreakMode::bending));
+    Json byFamily;
+    byFamily["ice"] = long(breaks.count(BondFamily::ice));
+    byFamily["freeze"] = long(freezeBroken);
 
-    JsonObject j;
-    j.add("case", "ridge").add("test", toString(settings_.test))
-     .add("water", externalWater_ ? externalWater_->name : toString(water_.level))
-     .add("consolidated_layer_m", settings_.layer.thickness)
-     .add("keel_thickness_m", g.keelTop - g.keelBottom)
-     .add("depth_m", D)
-     .add("water_level_m", g.waterLevel)
-     .add("freeze_bond_set", strengthModel_.summary())
-     .add("peak_force_N", peak)
-     .add("travel_at_peak_m", travelAtPeak)
-     .add("force_at_start_N", startForce)
-     .add("buoyancy_share_at_peak_N", shareAtPeak)
-     .add("peak_force_without_buoyancy_N", peak - shareAtPeak);
-    if (settings_.test == RidgeTest::flexure)
-    {
-        j.add("flexural_strength_Pa", 3.0 * peak * L / (2.0 * B * D * D))
-         .add("equivalent_thickness_m", std::sqrt(3.0 * peak * L / (2.0 * sigmaF1 * B)))
-         .add("sigma_f1_Pa", sigmaF1);
-    }
-    else
-    {
-        j.add("interface_area_m2", L * B)
-         .add("interface_strength_Pa", (peak - startForce) / (L * B));
-    }
-    j.add("broken_bonds", long(breaks.size()))
-     .add("broken_by_mode", byMode)
-     .add("broken_by_family", byFamily)
-     .add("freeze_bonds_broken_in_tension_share", freezeBroken > 0 ? double(freezeTension) / freezeBroken : 0.0)
-     .add("layer_keel_bonds_broken", long(interfaceBroken))
-     .add("particles", particleCount_)
-     .add("keel_particles", g.keelParticles)
-     .add("layer_particles", g.layerParticles)
-     .add("platen_speed_m_per_s", settings_.loading.speed)
-     .add("ejected_particles_stopped", long(loading_->state().frozenEjecta))
-     .add("steps", loading_->state().steps)
-     .add("dt", dt_)
-     .add("ranks", ranks_)
-     .add("wall_s", wallSeconds)
-     .add("loop_wall_s", loading_->loopSeconds())
-     .add("particle_steps_per_s", loading_->loopSeconds() > 0.0
-          ? loading_->loopSteps() * double(particleCount_) / loading_->loopSeconds() : 0.0);
-    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+    Json j;
+    j["case"] = "ridge";
+    j["test"] = settings_.test;
+    j["water"] = externalWater_ ? externalWater_->name : toString(water_.level);
+    j["consolidated_layer_m"] = settings_.layer.thickness;
+    j["keel_thickness_m"] = g.keelTop - g.keelBottom;
+    j["depth_m"] = g.depth();
+    j["water_level_m"] = g.waterLevel;
+    j["freeze_bond_set"] = strengthModel_.summary();
+    j["peak_force_N"] = peak;
+    j["travel_at_peak_m"] = travelAtPeak;
+    j["force_at_start_N"] = startForce;
+    j["buoyancy_share_at_peak_N"] = shareAtPeak;
+    j["peak_force_without_buoyancy_N"] = peak - shareAtPeak;
+    test_->addFigures(j, g, peak, startForce);
+    j["broken_bonds"] = long(breaks.size());
+    j["broken_by_mode"] = byMode;
+    j["broken_by_family"] = byFamily;
+    j["freeze_bonds_broken_in_tension_share"] = freezeBroken > 0 ? double(freezeTension) / freezeBroken : 0.0;
+    j["layer_keel_bonds_broken"] = long(interfaceBroken);
+    j["particles"] = particleCount_;
+    j["keel_particles"] = g.keelParticles;
+    j["layer_particles"] = g.layerParticles;
+    j["platen_speed_m_per_s"] = settings_.loading.speed;
+    j["ejected_particles_stopped"] = long(loading_->state().frozenEjecta);
+    j["steps"] = loading_->state().steps;
+    j["dt"] = dt_;
+    j["ranks"] = context_.ranks();
+    j["wall_s"] = wallSeconds;
+    j["loop_wall_s"] = loading_->loopSeconds();
+    j["particle_steps_per_s"] = loading_->loopSeconds() > 0.0
+          ? loading_->loopSteps() * double(particleCount_) / loading_->loopSeconds() : 0.0;
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
 
 } // namespace iceDEM

@@ -1,4 +1,5 @@
 #include "RubbleScene.H"
+#include "CommandLine.H"
 
 #include "Percentile.H"
 
@@ -11,7 +12,8 @@
 #include "IceBondForces.H"
 #include "FreezeBonding.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Format.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "SceneSetup.H"
@@ -48,26 +50,12 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
 {
     RubbleSettings s;
     std::string shapeOverride;
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        if (arg == "-case" && k + 1 < argc) s.caseDir = argv[++k];
-        else if (arg == "-stage" && k + 1 < argc)
-        {
-            s.stage = argv[++k];
-            if (s.stage != "settle" && s.stage != "bond" && s.stage != "all")
-            {
-                throw InputError("command line", "-stage", "'" + s.stage + "' is not one of: settle bond all");
-            }
-        }
-        else if (arg == "-resume") s.resume = true;
-        else if (arg == "-shape" && k + 1 < argc) shapeOverride = argv[++k];
-        else
-        {
-            throw InputError("command line", arg,
-                "unknown option or missing value; allowed: -case DIR -stage settle|bond|all -shape cuboid|empirical -resume");
-        }
-    }
+    CommandLine("rubbleDEM")
+        .text("-case", "DIR", "the case directory (default .)", s.caseDir)
+        .choice("-stage", {"settle", "bond", "all"}, "which stage to run (default all)", s.stage)
+        .choice("-shape", {"cuboid", "empirical"}, "block shape instead of blocks.shape", shapeOverride)
+        .flag("-resume", "settle: continue from the last checkpoint", s.resume)
+        .parse(argc, argv);
     const std::string file = s.caseDir + "/constant/rubbleProperties";
     const Dictionary d = Dictionary::readFile(file);
     d.checkKeys({"box", "blocks", "settling", "ends"});
@@ -144,23 +132,21 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
 
 RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
 :
-    comm_(comm),
+    context_(comm, settings.caseDir, "rubbleDEM"),
     settings_(settings)
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path("constant/iceProperties"));
-    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    ice_ = IceProperties::read(context_.path("constant/iceProperties"));
+    requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
+    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
     if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
     {
-        throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
+        throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
             "interface is for laboratory specimens; rubble needs given or heatBalance");
     }
     water_ = WaterProperties::readCase(settings_.caseDir);
     if (water_.level == WaterLevel::cfd)
     {
-        throw InputError(path("constant/couplingProperties"), "waterLevel",
+        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
             "cfd is not available to rubbleDEM yet; allowed here: none hydrostatic");
     }
     // Raining only has to produce the settled geometry: softer contacts and
@@ -176,19 +162,6 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
 RubbleScene::~RubbleScene() = default;
 
 
-std::string RubbleScene::path(const std::string& relative) const
-{
-    return settings_.caseDir + "/" + relative;
-}
-
-
-void RubbleScene::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 void RubbleScene::buildBlocks()
@@ -219,7 +192,7 @@ void RubbleScene::buildBlocks()
         << (settings_.sizesFile.empty() ? "synthetic sizes" : settings_.sizesFile) << "), "
         << rubble_.particles.size() << " particles of " << settings_.particleDiameter*1e3 << " mm, "
         << rubble_.iceVolume << " m3 of ice, block thickness " << rubble_.blockThickness << " m";
-    log(msg.str());
+    context_.log(msg.str());
 }
 
 
@@ -248,28 +221,26 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
     }
     double top = 0.0;
     for (const ParticleSpec& p : particles) top = std::max(top, p.position.z());
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        std::filesystem::create_directories(path("DEM"));
+        std::filesystem::create_directories(context_.path("DEM"));
         writeLiggghtsData
         (
-            path("DEM/rubble.data"), "rubble written by rubbleDEM", particles, ice.material.density,
+            context_.path("DEM/rubble.data"), "rubble written by rubbleDEM", particles, ice.material.density,
             Vec3(-0.05, -0.05, -0.05), Vec3(settings_.boxLength + 0.05, settings_.boxWidth + 0.05, top + 0.5),
             3, [&](const ParticleSpec& p) { return types[&p - particles.data()]; }
         );
     }
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
 
     // Time step from the ice bonds and contacts of the close packing (12 neighbours at most).
     const TimeStepLimits limits = timeStepLimits(ice, r, 12);
-    dt_ = chooseTimeStep(ice, limits, path("constant/iceProperties"));
+    dt_ = chooseTimeStep(ice, limits, context_.path("constant/iceProperties"));
 
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
     const double skin = 0.2*r;
     ScriptVariables variables
     {
-        {"dataFile", path("DEM/rubble.data")},
+        {"dataFile", context_.path("DEM/rubble.data")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice, r, skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(dt_)},
@@ -279,13 +250,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
     };
     const ScriptVariables contacts = boxContactVariables(contact);
     variables.insert(variables.end(), contacts.begin(), contacts.end());
-    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), "rubbleDEM");
-    const std::string script = path("DEM/in.rubbleBeam");
-    if (!std::filesystem::exists(script))
-    {
-        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp_->runScript(script);
+    lmp_ = context_.startLiggghts(variables, "DEM/in.rubbleBeam");
 
     if (from)
     {
@@ -331,7 +296,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
             }
         }
         bonds_->createBonds(rubble_.particles, iceBonds);
-        log("Ice bonds inside the blocks: " + bondStatistics(iceBonds, int(rubble_.particles.size())).summary());
+        context_.log("Ice bonds inside the blocks: " + bondStatistics(iceBonds, int(rubble_.particles.size())).summary());
     }
     lmp_->command("run 0");
 }
@@ -352,13 +317,13 @@ SavedRubble RubbleScene::gatherState(double time) const
         local.push_back(atom.rmass[i]/(4.0/3.0*M_PI*std::pow(atom.radius[i], 3)));
         local.push_back(atom.type[i]);
     }
-    const std::vector<double> all = gatherDoubles(comm_, local);
+    const std::vector<double> all = gatherDoubles(context_.comm(), local);
     SavedRubble s;
-    s.bonds = gatherBondStates(comm_, *bonds_);
+    s.bonds = gatherBondStates(context_.comm(), *bonds_);
     s.time = time;
     s.waterLevel = water_.hydrostatic.surfaceLevel;
     s.description = "rubble of " + std::to_string(blockOfTag_.size()) + " particles, rubbleDEM";
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
         s.particles.resize(blockOfTag_.size());
         for (std::size_t k = 0; k + 13 <= all.size(); k += 13)
@@ -413,12 +378,12 @@ SettledLayer RubbleScene::measureLayer(double time, double kineticPerParticle, b
 void RubbleScene::settle()
 {
     double t = 0.0;
-    const std::string checkpoint = path("DEM/settling.checkpoint.h5");
+    const std::string checkpoint = context_.path("DEM/settling.checkpoint.h5");
     if (settings_.resume && std::filesystem::exists(checkpoint))
     {
         const SavedRubble saved = SavedRubble::read(checkpoint);
         t = saved.time;
-        log("Resuming the settling from " + checkpoint + " at t = " + jsonNumber(t) + " s");
+        context_.log("Resuming the settling from " + checkpoint + " at t = " + formatNumber(t) + " s");
         startLiggghts(&saved, true);
     }
     else
@@ -431,7 +396,7 @@ void RubbleScene::settle()
          << " Pa, blocks unbreakable, hysteretic alpha " << settings_.settlingDampingAlpha << ", water "
          << toString(water_.level) << "; stops when the kinetic energy per particle < "
          << settings_.kineticEnergyThreshold << " J (after " << settings_.minTime << " s) or at " << settings_.maxTime << " s";
-    log(head.str());
+    context_.log(head.str());
 
     const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
     const auto start = std::chrono::steady_clock::now();
@@ -449,7 +414,7 @@ void RubbleScene::settle()
         ke = totalKineticEnergy(*lmp_)/n;
         if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
         {
-            throw RunError("settling blew up at t = " + jsonNumber(t) + " s (step " + std::to_string(steps_) + "): "
+            throw RunError("settling blew up at t = " + formatNumber(t) + " s (step " + std::to_string(steps_) + "): "
                 + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
         }
         quietChecks = (ke < settings_.kineticEnergyThreshold && t >= settings_.minTime) ? quietChecks + 1 : 0;
@@ -461,13 +426,13 @@ void RubbleScene::settle()
                  << std::scientific << std::setprecision(2) << ke << " J/particle  "
                  << std::setprecision(2) << n*double(steps_)/std::max(wall, 1e-9) << " particle-steps/s  "
                  << "at most " << formatDuration(wall/std::max(t, 1e-9)*(settings_.maxTime - t)) << " left";
-            log(line.str());
+            context_.log(line.str());
             nextLog = t + 1.0;
         }
         if (t >= nextCheckpoint)
         {
             const SavedRubble state = gatherState(t);
-            if (rank_ == 0) state.write(checkpoint);
+            if (context_.rank() == 0) state.write(checkpoint);
             nextCheckpoint = t + settings_.checkpointInterval;
         }
         if (quietChecks >= 2)
@@ -482,11 +447,11 @@ void RubbleScene::settle()
         << "): layer " << layer_.bottom << " to " << layer_.top << " m, thickness " << layer_.thickness
         << " m, porosity " << layer_.porosity << " (spheres: " << layer_.spherePorosity << "), "
         << 100*layer_.volumeAboveWater << " % of the ice above water, freeboard " << layer_.freeboard << " m";
-    log(msg.str());
+    context_.log(msg.str());
     const SavedRubble state = gatherState(t);
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        state.write(path("DEM/settled.h5"));
+        state.write(context_.path("DEM/settled.h5"));
     }
 }
 
@@ -530,7 +495,7 @@ void RubbleScene::freezeBond()
             ++fixed;
         }
     }
-    fixed = sumOverRanks(comm_, fixed);
+    fixed = sumOverRanks(context_.comm(), fixed);
 
     std::ostringstream msg;
     msg << "Freeze-bonds: " << freezeStats_.bonds << " between " << freezeStats_.blockContacts
@@ -539,20 +504,20 @@ void RubbleScene::freezeBond()
         << " kPa max; tensile " << freezeStats_.meanTensile*1e-3 << " +- " << freezeStats_.sdTensile*1e-3
         << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- " << freezeStats_.sdShear*1e-3
         << " kPa on the bond area; " << strengthModel_.summary() << "; " << fixed << " particles fixed at the ends";
-    log(msg.str());
+    context_.log(msg.str());
 }
 
 
 void RubbleScene::writeSummary(double wallSeconds) const
 {
     const SavedRubble state = gatherState(layer_.time);
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
-    state.write(path("DEM/rubble.h5"));
-    std::filesystem::create_directories(path("postProcessing"));
-    std::filesystem::create_directories(path("VTK"));
+    state.write(context_.path("DEM/rubble.h5"));
+    std::filesystem::create_directories(context_.path("postProcessing"));
+    std::filesystem::create_directories(context_.path("VTK"));
 
     CsvWriter strengths({"tagA", "tagB", "contact_force_N", "confinement_Pa", "tensile_Pa", "shear_Pa"});
     for (const NewFreezeBond& b : freezeBonds_)
@@ -560,7 +525,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
         strengths.addRow({double(b.pair.i + 1), double(b.pair.j + 1), b.contactForce, b.strength.confinement,
                           b.strength.tensile, b.strength.shear});
     }
-    strengths.write(path("postProcessing/freezeBonds.csv"));
+    strengths.write(context_.path("postProcessing/freezeBonds.csv"));
 
     ParticleFrame particles;
     std::vector<int> bondCount(state.particles.size(), 0);
@@ -584,58 +549,58 @@ void RubbleScene::writeSummary(double wallSeconds) const
         particles.fixed.push_back(p.type == fixedType);
         particles.block.push_back(p.block);
     }
-    writeParticlesVtp(path("VTK/rubble_particles.vtp"), particles);
-    writeBondsVtp(path("VTK/rubble_bonds.vtp"), network);
+    writeParticlesVtp(context_.path("VTK/rubble_particles.vtp"), particles);
+    writeBondsVtp(context_.path("VTK/rubble_bonds.vtp"), network);
 
     long iceBonds = 0;
     for (const BondState& b : state.bonds) iceBonds += b.family == BondFamily::ice;
-    JsonObject j;
-    j.add("case", "rubbleBeam")
-     .add("block_shape", name(settings_.shape))
-     .add("blocks", long(rubble_.blocks.size()))
-     .add("block_ice_volume_m3", rubble_.iceVolume)
-     .add("settled_time_s", layer_.time)
-     .add("at_rest", layer_.atRest)
-     .add("kinetic_energy_per_particle_J", layer_.kineticEnergyPerParticle)
-     .add("layer_bottom_m", layer_.bottom)
-     .add("layer_top_m", layer_.top)
-     .add("thickness_m", layer_.thickness)
-     .add("porosity", layer_.porosity)
-     .add("sphere_porosity", layer_.spherePorosity)
-     .add("ice_volume_above_water_fraction", layer_.volumeAboveWater)
-     .add("freeboard_m", layer_.freeboard)
-     .add("water_level_m", water_.hydrostatic.surfaceLevel)
-     .add("freeze_bonds", long(freezeStats_.bonds))
-     .add("block_contacts", long(freezeStats_.blockContacts))
-     .add("mean_bonds_per_block_contact", freezeStats_.meanBondsPerBlockContact)
-     .add("freeze_bond_tensile_mean_Pa", freezeStats_.meanTensile)
-     .add("freeze_bond_tensile_sd_Pa", freezeStats_.sdTensile)
-     .add("freeze_bond_shear_mean_Pa", freezeStats_.meanShear)
-     .add("freeze_bond_shear_sd_Pa", freezeStats_.sdShear)
-     .add("confinement_mean_Pa", freezeStats_.meanConfinement)
-     .add("confinement_max_Pa", freezeStats_.maxConfinement)
-     .add("area_correction", strengthModel_.areaCorrection())
-     .add("ice_bonds", iceBonds)
-     .add("particles", long(state.particles.size()))
-     .add("bonds", long(state.bonds.size()))
-     .add("steps", steps_)
-     .add("dt", dt_)
-     .add("ranks", long(ranks_))
-     .add("settling_wall_s", settleWall_)
-     .add("wall_s", wallSeconds);
-    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+    Json j;
+    j["case"] = "rubbleBeam";
+    j["block_shape"] = name(settings_.shape);
+    j["blocks"] = long(rubble_.blocks.size());
+    j["block_ice_volume_m3"] = rubble_.iceVolume;
+    j["settled_time_s"] = layer_.time;
+    j["at_rest"] = layer_.atRest;
+    j["kinetic_energy_per_particle_J"] = layer_.kineticEnergyPerParticle;
+    j["layer_bottom_m"] = layer_.bottom;
+    j["layer_top_m"] = layer_.top;
+    j["thickness_m"] = layer_.thickness;
+    j["porosity"] = layer_.porosity;
+    j["sphere_porosity"] = layer_.spherePorosity;
+    j["ice_volume_above_water_fraction"] = layer_.volumeAboveWater;
+    j["freeboard_m"] = layer_.freeboard;
+    j["water_level_m"] = water_.hydrostatic.surfaceLevel;
+    j["freeze_bonds"] = long(freezeStats_.bonds);
+    j["block_contacts"] = long(freezeStats_.blockContacts);
+    j["mean_bonds_per_block_contact"] = freezeStats_.meanBondsPerBlockContact;
+    j["freeze_bond_tensile_mean_Pa"] = freezeStats_.meanTensile;
+    j["freeze_bond_tensile_sd_Pa"] = freezeStats_.sdTensile;
+    j["freeze_bond_shear_mean_Pa"] = freezeStats_.meanShear;
+    j["freeze_bond_shear_sd_Pa"] = freezeStats_.sdShear;
+    j["confinement_mean_Pa"] = freezeStats_.meanConfinement;
+    j["confinement_max_Pa"] = freezeStats_.maxConfinement;
+    j["area_correction"] = strengthModel_.areaCorrection();
+    j["ice_bonds"] = iceBonds;
+    j["particles"] = long(state.particles.size());
+    j["bonds"] = long(state.bonds.size());
+    j["steps"] = steps_;
+    j["dt"] = dt_;
+    j["ranks"] = long(context_.ranks());
+    j["settling_wall_s"] = settleWall_;
+    j["wall_s"] = wallSeconds;
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
 
 
 void RubbleScene::run()
 {
     const auto start = std::chrono::steady_clock::now();
-    log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
-        + std::to_string(ranks_) + " rank(s)");
+    context_.log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
+        + std::to_string(context_.ranks()) + " rank(s)");
     buildBlocks();
     if (settings_.stage == "bond")
     {
-        const std::string settled = path("DEM/settled.h5");
+        const std::string settled = context_.path("DEM/settled.h5");
         if (!std::filesystem::exists(settled))
         {
             throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
@@ -657,7 +622,7 @@ void RubbleScene::run()
     {
         writeSummary(wall);
     }
-    log("Wall time " + formatDuration(wall));
+    context_.log("Wall time " + formatDuration(wall));
 }
 
 } // namespace iceDEM

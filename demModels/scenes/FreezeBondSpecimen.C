@@ -47,15 +47,11 @@ FreezeBondSpecimen::FreezeBondSpecimen
     double submersionTime
 )
 :
-    comm_(comm),
-    caseDir_(caseDir),
-    appName_(appName)
+    context_(comm, caseDir, appName)
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path("constant/iceProperties"));
-    requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
+    ice_ = IceProperties::read(context_.path("constant/iceProperties"));
+    requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
+    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
     if (submersionTime > 0.0)
     {
         strengthModel_.setSubmersionTime(submersionTime);
@@ -72,19 +68,6 @@ void FreezeBondSpecimen::setFreezeModulus(double youngsModulus)
 }
 
 
-std::string FreezeBondSpecimen::path(const std::string& relative) const
-{
-    return caseDir_ + "/" + relative;
-}
-
-
-void FreezeBondSpecimen::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 double FreezeBondSpecimen::layerHeight(int layer) const
@@ -134,12 +117,12 @@ void FreezeBondSpecimen::build
     std::ostringstream msg;
     msg << "Specimen: " << particles_.size() << " particles of " << d*1e3 << " mm in " << 2*layersPerHalf_
         << " close-packed layers; ice bonds: " << stats.summary();
-    log(msg.str());
+    context_.log(msg.str());
 
     contact_ = ContactParameters::of(ice_, d, ice_.material.density*M_PI/6.0*d*d*d);
     // Room for the freeze-bonds: at most 3 per particle across a close-packed interface.
     const TimeStepLimits limits = timeStepLimits(ice_, 0.5*d, stats.maxBondsPerParticle + 3);
-    dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
+    dt_ = chooseTimeStep(ice_, limits, context_.path("constant/iceProperties"));
 }
 
 
@@ -147,12 +130,12 @@ void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables&
 {
     const double r = 0.5*geometry_.particleDiameter;
     const double reach = 0.5*geometry_.diameter + margin;
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        std::filesystem::create_directories(path("DEM"));
+        std::filesystem::create_directories(context_.path("DEM"));
         writeLiggghtsData
         (
-            path("DEM/specimen.data"), "freeze-bond specimen written by " + appName_,
+            context_.path("DEM/specimen.data"), "freeze-bond specimen written by " + context_.application(),
             particles_, ice_.material.density,
             Vec3(-reach, -reach, -geometry_.halfLength - margin),
             Vec3(reach, reach, geometry_.halfLength + margin),
@@ -160,13 +143,11 @@ void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables&
             [](const ParticleSpec& p) { return p.material; }
         );
     }
-    MPI_Barrier(comm_);
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
+    MPI_Barrier(context_.comm());
     const double skin = 0.2*r;
     ScriptVariables variables
     {
-        {"dataFile", path("DEM/specimen.data")},
+        {"dataFile", context_.path("DEM/specimen.data")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, r, skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(dt_)}
@@ -174,13 +155,7 @@ void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables&
     const ScriptVariables contactVars = contactVariables(contact_);
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
     variables.insert(variables.end(), extra.begin(), extra.end());
-    defineScriptVariables(*lmp_, variables, path("DEM/variables.generated"), appName_);
-    const std::string scriptPath = path("DEM/" + script);
-    if (!std::filesystem::exists(scriptPath))
-    {
-        throw InputError(scriptPath, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp_->runScript(scriptPath);
+    lmp_ = context_.startLiggghts(variables, "DEM/" + script);
     bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
     lmp_->command("fix iceBondForces all external pf/callback 1 1");
     bonds_->attach("iceBondForces");
@@ -215,7 +190,7 @@ double FreezeBondSpecimen::forceOnType(int type, int component) const
             f += atom.f[i][component];
         }
     }
-    return sumOverRanks(comm_, f);
+    return sumOverRanks(context_.comm(), f);
 }
 
 
@@ -243,7 +218,7 @@ double FreezeBondSpecimen::meanPositionOfLayer(int layer, int component) const
             ++n;
         }
     }
-    return sumOverRanks(comm_, sum)/static_cast<double>(sumOverRanks(comm_, n));
+    return sumOverRanks(context_.comm(), sum)/static_cast<double>(sumOverRanks(context_.comm(), n));
 }
 
 
@@ -286,27 +261,27 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, tensile strength " << freezeStats_.meanTensile*1e-3
         << " +- " << freezeStats_.sdTensile*1e-3 << " kPa, shear " << freezeStats_.meanShear*1e-3
         << " kPa on the bond area; " << strengthModel_.summary();
-    log(msg.str());
+    context_.log(msg.str());
 }
 
 
 std::string FreezeBondSpecimen::writeRunRecord(const std::string& label) const
 {
-    const std::string dir = path("postProcessing/runs/" + label);
+    const std::string dir = context_.path("postProcessing/runs/" + label);
     std::filesystem::create_directories(dir);
     breakage_.writeHdf5(dir + "/breakage.h5");
     return dir;
 }
 
 
-void FreezeBondSpecimen::addRunFigures(JsonObject& j, double wallSeconds) const
+void FreezeBondSpecimen::addRunFigures(Json& j, double wallSeconds) const
 {
-    j.add("particles", long(particles_.size()))
-     .add("bonds", long(iceBonds_.size() + freezeBonds_.size()))
-     .add("steps", steps_)
-     .add("dt", dt_)
-     .add("ranks", long(ranks_))
-     .add("wall_s", wallSeconds);
+    j["particles"] = long(particles_.size());
+    j["bonds"] = long(iceBonds_.size() + freezeBonds_.size());
+    j["steps"] = steps_;
+    j["dt"] = dt_;
+    j["ranks"] = long(context_.ranks());
+    j["wall_s"] = wallSeconds;
 }
 
 
@@ -317,13 +292,13 @@ long FreezeBondSpecimen::intactFreezeBonds() const
     {
         intact += l.family == static_cast<int>(BondFamily::freeze);
     }
-    return sumOverRanks(comm_, intact);
+    return sumOverRanks(context_.comm(), intact);
 }
 
 
 void FreezeBondSpecimen::collectBreaks()
 {
-    for (const BreakEvent& e : gatherBreakEvents(comm_, bonds_->takeLocalBreakEvents()))
+    for (const BreakEvent& e : gatherBreakEvents(context_.comm(), bonds_->takeLocalBreakEvents()))
     {
         breakage_.append(e);
     }

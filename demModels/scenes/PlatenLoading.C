@@ -1,9 +1,10 @@
 #include "PlatenLoading.H"
+#include "Format.H"
 
 #include "Dictionary.H"
 #include "IceBondForces.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 
@@ -26,12 +27,6 @@ namespace iceDEM
 namespace
 {
 
-std::string number(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
 
 std::vector<std::string> curveColumns(const std::vector<std::string>& extras)
 {
@@ -48,7 +43,7 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     maxTravel = control.getScalar("maxTravel");
     if (!(maxTravel > 0.0))
     {
-        control.fail("maxTravel", number(maxTravel) + " is not allowed; expected a positive number");
+        control.fail("maxTravel", formatNumber(maxTravel) + " is not allowed; expected a positive number");
     }
     stopAfterHalfLoad = control.getBoolOrDefault("stopAfterHalfLoad", true);
     travelAfterHalfLoad = control.getScalarOrDefault("travelAfterHalfLoad", 0.005);
@@ -130,15 +125,12 @@ PlatenLoading::PlatenLoading
     const std::vector<std::string>& extraColumns
 )
 :
-    comm_(comm),
-    caseDir_(caseDir),
-    application_(application),
+    context_(comm, caseDir, application),
     control_(control),
     particleCount_(particleCount),
     fixedType_(fixedType),
     curve_(curveColumns(extraColumns))
 {
-    MPI_Comm_rank(comm_, &rank_);
     state_.dt = dt;
 }
 
@@ -146,50 +138,37 @@ PlatenLoading::PlatenLoading
 PlatenLoading::~PlatenLoading() = default;
 
 
-std::string PlatenLoading::path(const std::string& relative) const
-{
-    return caseDir_ + "/" + relative;
-}
-
-
-void PlatenLoading::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 std::string PlatenLoading::restartFile(const Checkpoint& c) const
 {
-    return path("DEM/checkpoint/liggghts.restart." + std::to_string(c.state.steps));
+    return context_.path("DEM/checkpoint/liggghts.restart." + std::to_string(c.state.steps));
 }
 
 
 bool PlatenLoading::checkpointExists() const
 {
-    return std::filesystem::exists(path("DEM/checkpoint/" + application_ + ".checkpoint"));
+    return std::filesystem::exists(context_.path("DEM/checkpoint/" + context_.application() + ".checkpoint"));
 }
 
 
 Checkpoint PlatenLoading::readCheckpoint() const
 {
-    Checkpoint c = Checkpoint::read(path("DEM/checkpoint/" + application_ + ".checkpoint"));
+    Checkpoint c = Checkpoint::read(context_.path("DEM/checkpoint/" + context_.application() + ".checkpoint"));
     if (c.state.dt != state_.dt)
     {
-        throw InputError(path("constant/iceProperties"), "timeStep",
-            "the time step (" + number(state_.dt) + " s) differs from the checkpoint's ("
-            + number(c.state.dt) + " s): the inputs changed since it was written");
+        throw InputError(context_.path("constant/iceProperties"), "timeStep",
+            "the time step (" + formatNumber(state_.dt) + " s) differs from the checkpoint's ("
+            + formatNumber(c.state.dt) + " s): the inputs changed since it was written");
     }
     if (c.curveColumns != curve_.columns())
     {
-        throw RunError(path("DEM/checkpoint") + ": the checkpoint's force curve has other columns; "
-            "it was written by another version of " + application_ + ": delete the folder and start again");
+        throw RunError(context_.path("DEM/checkpoint") + ": the checkpoint's force curve has other columns; "
+            "it was written by another version of " + context_.application() + ": delete the folder and start again");
     }
     if (!std::filesystem::exists(restartFile(c)))
     {
-        throw RunError(path("DEM/checkpoint") + ": the checkpoint of step " + std::to_string(c.state.steps)
+        throw RunError(context_.path("DEM/checkpoint") + ": the checkpoint of step " + std::to_string(c.state.steps)
             + " has no LIGGGHTS restart (" + restartFile(c) + "); delete the folder and start again");
     }
     return c;
@@ -205,7 +184,7 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
     const long expectedStep = c.state.liggghtsStepAtStart + c.state.steps;
     if (update.ntimestep != expectedStep)
     {
-        throw RunError(path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
+        throw RunError(context_.path("DEM/checkpoint") + ": LIGGGHTS' restart is at step "
             + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
             + std::to_string(expectedStep) + "; delete the folder and start again");
     }
@@ -217,14 +196,14 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
     state_ = c.state;
     for (const auto& row : c.curveRows) curve_.addRow(row);
     for (const BreakEvent& e : c.breaks) breakage_.append(e);
-    particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/particles.pvd")));
-    bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(path("VTK/bonds.pvd")));
+    particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(context_.path("VTK/particles.pvd")));
+    bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(context_.path("VTK/bonds.pvd")));
     // Frames written after the checkpoint by the killed run are redone.
     particlesPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
     bondsPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
     resumed_ = true;
-    log("Resumed from the checkpoint at step " + std::to_string(state_.steps) + ", time "
-        + number(lmp.time()) + " s");
+    context_.log("Resumed from the checkpoint at step " + std::to_string(state_.steps) + ", time "
+        + formatNumber(lmp.time()) + " s");
 }
 
 
@@ -248,7 +227,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
          << maxSteps << " steps (" << control_.maxTravel * 1e3 << " mm of travel after contact)";
-    log(plan.str());
+    context_.log(plan.str());
 
     if (resumed_)
     {
@@ -324,13 +303,13 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
                  << "  peak " << st.peak * 1e-3 << " kN  broken " << breakage_.size()
                  << "  " << std::setprecision(0) << (st.steps - firstStep_) * particleCount_ / elapsed
                  << " particle-steps/s  ETA <= " << formatDuration(remaining);
-            log(line.str());
+            context_.log(line.str());
         }
 
         if (done)
         {
-            log("Load has stayed below half the peak " + number(st.peak * 1e-3) + " kN since "
-                + number((st.halfLoadTravel - st.travelAtPeak) * 1e3) + " mm after it: stopping");
+            context_.log("Load has stayed below half the peak " + formatNumber(st.peak * 1e-3) + " kN since "
+                + formatNumber((st.halfLoadTravel - st.travelAtPeak) * 1e3) + " mm after it: stopping");
             break;
         }
     }
@@ -359,8 +338,8 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
     st.previousTravel = travel;
     st.previousForce = force;
     const double kinetic = totalKineticEnergy(lmp);
-    const double elastic = sumOverRanks(comm_, bonds.localBondEnergy());
-    for (const BreakEvent& e : gatherBreakEvents(comm_, bonds.takeLocalBreakEvents()))
+    const double elastic = sumOverRanks(context_.comm(), bonds.localBondEnergy());
+    for (const BreakEvent& e : gatherBreakEvents(context_.comm(), bonds.takeLocalBreakEvents()))
     {
         breakage_.append(e);
     }
@@ -378,7 +357,7 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
         if (stopped > 0)
         {
             st.frozenEjecta += stopped;
-            log(std::to_string(stopped) + " particle(s) flew clear of the body and were stopped "
+            context_.log(std::to_string(stopped) + " particle(s) flew clear of the body and were stopped "
                 "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
         }
     }
@@ -398,14 +377,14 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
     // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
     // that the platen never put in.
     std::string failure = bonds.failure();
-    const long present = sumOverRanks(comm_, static_cast<long>(lmp.engine().atom->nlocal));
+    const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp.engine().atom->nlocal));
     if (failure.empty() && present != particleCount_)
     {
         failure = std::to_string(particleCount_ - present) + " particle(s) left the simulation box by time "
-            + number(lmp.time()) + " s (step " + std::to_string(lmp.step()) + ")";
+            + formatNumber(lmp.time()) + " s (step " + std::to_string(lmp.step()) + ")";
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
-    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
+    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, context_.comm());
     if (anyFailed == 0 && kinetic > control_.blowUpFactor * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
     {
         std::ostringstream msg;
@@ -419,7 +398,7 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
     }
     if (anyFailed)
     {
-        curve_.write(path("postProcessing/platenForce.csv"));
+        curve_.write(context_.path("postProcessing/platenForce.csv"));
         throw RunError(failure.empty() ? "the run blew up on another rank" : failure);
     }
 }
@@ -429,7 +408,7 @@ void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
 {
     const GatheredState gathered = gatherState(lmp, bonds, fixedType_);
     const int frame = state_.frame++;
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -462,17 +441,17 @@ void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
     name << std::setw(5) << std::setfill('0') << frame;
     const std::string particlesFile = "particles_" + name.str() + ".vtp";
     const std::string bondsFile = "bonds_" + name.str() + ".vtp";
-    writeParticlesVtp(path("VTK/" + particlesFile), gathered.particles);
-    writeBondsVtp(path("VTK/" + bondsFile), network);
+    writeParticlesVtp(context_.path("VTK/" + particlesFile), gathered.particles);
+    writeBondsVtp(context_.path("VTK/" + bondsFile), network);
     if (!particlesPvd_)
     {
-        particlesPvd_ = std::make_unique<PvdCollection>(path("VTK/particles.pvd"));
-        bondsPvd_ = std::make_unique<PvdCollection>(path("VTK/bonds.pvd"));
+        particlesPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/particles.pvd"));
+        bondsPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/bonds.pvd"));
     }
     particlesPvd_->add(lmp.time(), particlesFile);
     bondsPvd_->add(lmp.time(), bondsFile);
-    breakage_.writeHdf5(path("postProcessing/breakage.h5"));
-    curve_.write(path("postProcessing/platenForce.csv"));
+    breakage_.writeHdf5(context_.path("postProcessing/breakage.h5"));
+    curve_.write(context_.path("postProcessing/platenForce.csv"));
 }
 
 
@@ -494,15 +473,15 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
     // step, then ours, written atomically, which names the step. The older
     // restart is removed only after that: a run killed at any moment leaves
     // a checkpoint whose restart is there.
-    const std::string dir = path("DEM/checkpoint");
-    if (rank_ == 0)
+    const std::string dir = context_.path("DEM/checkpoint");
+    if (context_.rank() == 0)
     {
         std::filesystem::create_directories(dir);
     }
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
     lmp.command("write_restart " + dir + "/liggghts.restart.tmp");
-    const std::vector<BondState> bondStates = gatherBondStates(comm_, bonds);
-    if (rank_ == 0)
+    const std::vector<BondState> bondStates = gatherBondStates(context_.comm(), bonds);
+    if (context_.rank() == 0)
     {
         Checkpoint c;
         c.state = state_;
@@ -512,7 +491,7 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
         c.bonds = bondStates;
         const std::string restart = restartFile(c);
         std::filesystem::rename(dir + "/liggghts.restart.tmp", restart);
-        c.write(dir + "/" + application_ + ".checkpoint");
+        c.write(dir + "/" + context_.application() + ".checkpoint");
         for (const auto& entry : std::filesystem::directory_iterator(dir))
         {
             const std::string name = entry.path().filename().string();
@@ -522,7 +501,7 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
             }
         }
     }
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
 }
 
 } // namespace iceDEM

@@ -1,5 +1,6 @@
 #include "AppMain.H"
 
+#include "CommandLine.H"
 #include "InputError.H"
 
 #include <iostream>
@@ -7,24 +8,6 @@
 
 namespace iceDEM
 {
-
-double positiveNumberArgument(int argc, char** argv, int& k)
-{
-    const std::string option = argv[k];
-    const std::string v = k + 1 < argc ? argv[++k] : "";
-    try
-    {
-        std::size_t used = 0;
-        const double x = std::stod(v, &used);
-        if (used == v.size() && x > 0.0)
-        {
-            return x;
-        }
-    }
-    catch (const std::exception&) {}
-    throw InputError("command line", option, "needs a positive number, got '" + v + "'");
-}
-
 
 int runApplication(int argc, char** argv, const char* name, const std::function<void(MPI_Comm)>& body)
 {
@@ -35,6 +18,13 @@ int runApplication(int argc, char** argv, const char* name, const std::function<
     try
     {
         body(MPI_COMM_WORLD);
+    }
+    catch (const HelpRequested& help)
+    {
+        if (rank == 0)
+        {
+            std::cout << help.what() << std::endl;
+        }
     }
     catch (const InputError& e)
     {

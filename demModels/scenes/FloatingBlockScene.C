@@ -1,8 +1,10 @@
 #include "FloatingBlockScene.H"
+#include "Format.H"
 
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "IceBondForces.H"
+#include "Json.H"
 #include "InputError.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
@@ -28,19 +30,7 @@ namespace
 
 constexpr int iceType = 1;
 
-std::string number(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
 
-std::string exact(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(17) << v;
-    return s.str();
-}
 
 double sphereVolume(double r)
 {
@@ -58,7 +48,7 @@ FloatingBlockSettings FloatingBlockSettings::read(const std::string& caseDir)
         const double v = d.getScalar(key);
         if (!(v > 0.0))
         {
-            d.fail(key, number(v) + " is not allowed; expected a positive number");
+            d.fail(key, formatNumber(v) + " is not allowed; expected a positive number");
         }
         return v;
     };
@@ -134,45 +124,29 @@ std::vector<ParticleSpec> latticeBlock(BlockLattice lattice, double radius, cons
 
 FloatingBlockScene::FloatingBlockScene(MPI_Comm comm, const std::string& caseDir)
 :
-    comm_(comm),
-    caseDir_(caseDir),
+    context_(comm, caseDir, "floatingBlockDEM"),
     curve_({"time", "draft", "draftOverHeight", "submergedVolumeFraction", "centreX", "centreY", "centreZ", "kineticEnergy"})
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path("constant/iceProperties"));
-    water_ = WaterProperties::readCase(caseDir_);
+    ice_ = IceProperties::read(context_.path("constant/iceProperties"));
+    water_ = WaterProperties::readCase(context_.caseDir());
     if (water_.level != WaterLevel::hydrostatic)
     {
-        throw InputError(path("constant/couplingProperties"), "waterLevel",
+        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
             "floatingBlockDEM needs 'hydrostatic' (got '" + toString(water_.level) + "')");
     }
     if (!(ice_.material.density < water_.hydrostatic.density))
     {
-        throw InputError(path("constant/iceProperties"), "material.density",
-            "the ice (" + number(ice_.material.density) + " kg/m3) must be lighter than the water ("
-            + number(water_.hydrostatic.density) + " kg/m3) to float");
+        throw InputError(context_.path("constant/iceProperties"), "material.density",
+            "the ice (" + formatNumber(ice_.material.density) + " kg/m3) must be lighter than the water ("
+            + formatNumber(water_.hydrostatic.density) + " kg/m3) to float");
     }
-    settings_ = FloatingBlockSettings::read(caseDir_);
+    settings_ = FloatingBlockSettings::read(context_.caseDir());
 }
 
 
 FloatingBlockScene::~FloatingBlockScene() = default;
 
 
-std::string FloatingBlockScene::path(const std::string& relative) const
-{
-    return caseDir_ + "/" + relative;
-}
-
-
-void FloatingBlockScene::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 void FloatingBlockScene::buildParticles()
@@ -204,14 +178,14 @@ void FloatingBlockScene::buildParticles()
     bondStats_ = builder.statistics();
     contactStiffness_ = M_PI * ice_.material.youngsModulus * 2.0 * settings_.particleRadius / 4.0;
     const TimeStepLimits limits = timeStepLimits(ice_, settings_.particleRadius, bondStats_.maxBondsPerParticle);
-    dt_ = chooseTimeStep(ice_, limits, path("constant/iceProperties"));
+    dt_ = chooseTimeStep(ice_, limits, context_.path("constant/iceProperties"));
 
     std::ostringstream msg;
     msg << "Block: " << particles_.size() << " spheres of radius " << settings_.particleRadius
         << " m on a " << (settings_.lattice == BlockLattice::cubic ? "simple cubic" : "hexagonal close-packed") << " lattice, " << hi.x() - lo.x() + 2 * settings_.particleRadius << " x "
         << hi.y() - lo.y() + 2 * settings_.particleRadius << " x " << blockHeight_ << " m\nBonds: "
         << bondStats_.summary() << "\nTime step " << dt_ << " s (limit " << limits.limit << " s)";
-    log(msg.str());
+    context_.log(msg.str());
 }
 
 
@@ -226,9 +200,9 @@ void FloatingBlockScene::startLiggghts()
         xMax = std::max(xMax, std::abs(p.position.x()) + r);
         yMax = std::max(yMax, std::abs(p.position.y()) + r);
     }
-    if (rank_ == 0)
+    if (context_.rank() == 0)
     {
-        writeStreamAtomically(path("DEM/packing.data"), [&](std::ostream& out)
+        writeStreamAtomically(context_.path("DEM/packing.data"), [&](std::ostream& out)
         {
             const double zLo = std::min(zw, particles_.front().position.z()) - 2.0 * blockHeight_ - margin;
             const double zHi = std::max(zw, particles_.front().position.z()) + 2.0 * blockHeight_ + margin;
@@ -245,11 +219,8 @@ void FloatingBlockScene::startLiggghts()
             }
         });
     }
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
 
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
-    LiggghtsInstance& lmp = *lmp_;
     const double maxDistFactor =
         std::max(ice_.family(BondFamily::ice).distFactor, ice_.family(BondFamily::freeze).distFactor);
     const double skin = 0.2 * r;
@@ -261,37 +232,22 @@ void FloatingBlockScene::startLiggghts()
         gn = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * contactStiffness_);
         gt = 2.0 * ice_.damping.dampingRatio * std::sqrt(reducedMass * kt);
     }
-    const std::vector<std::pair<std::string, std::string>> variables
+    const ScriptVariables variables
     {
-        {"dataFile", path("DEM/packing.data")},
-        {"ghostCutoff", exact(1.1 * maxDistFactor * 2.0 * r + skin)},
-        {"neighbourSkin", exact(skin)},
-        {"kn", exact(contactStiffness_)},
-        {"kt", exact(kt)},
-        {"gn", exact(gn)},
-        {"gt", exact(gt)},
-        {"mu", exact(ice_.material.frictionCoefficient)},
-        {"muR", exact(ice_.material.rollingFrictionCoefficient)},
-        {"dt", exact(dt_)},
-        {"gravity", exact(water_.hydrostatic.gravity)}
+        {"dataFile", context_.path("DEM/packing.data")},
+        {"ghostCutoff", exactNumber(1.1 * maxDistFactor * 2.0 * r + skin)},
+        {"neighbourSkin", exactNumber(skin)},
+        {"kn", exactNumber(contactStiffness_)},
+        {"kt", exactNumber(kt)},
+        {"gn", exactNumber(gn)},
+        {"gt", exactNumber(gt)},
+        {"mu", exactNumber(ice_.material.frictionCoefficient)},
+        {"muR", exactNumber(ice_.material.rollingFrictionCoefficient)},
+        {"dt", exactNumber(dt_)},
+        {"gravity", exactNumber(water_.hydrostatic.gravity)}
     };
-    std::ostringstream variablesScript;
-    variablesScript << "# written by floatingBlockDEM\n";
-    for (const auto& [name, value] : variables)
-    {
-        lmp.setVariable(name, value);
-        variablesScript << "variable " << name << " index " << value << "\n";
-    }
-    if (rank_ == 0)
-    {
-        writeFileAtomically(path("DEM/variables.generated"), variablesScript.str());
-    }
-    const std::string script = path("DEM/in.floatingBlock");
-    if (!std::filesystem::exists(script))
-    {
-        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp.runScript(script);
+    lmp_ = context_.startLiggghts(variables, "DEM/in.floatingBlock");
+    LiggghtsInstance& lmp = *lmp_;
 
     // Water first, bonds (with hysteretic damping of the total) next, added mass last.
     waterForces_ = std::make_unique<WaterForces>(lmp, HydrostaticWater(water_.hydrostatic));
@@ -323,9 +279,9 @@ FloatingBlockScene::Sample FloatingBlockScene::sample() const
         }
     }
     double total[4];
-    MPI_Allreduce(sums, total, 4, MPI_DOUBLE, MPI_SUM, comm_);
+    MPI_Allreduce(sums, total, 4, MPI_DOUBLE, MPI_SUM, context_.comm());
     double extremes[2] = {lowest, -highest}, global[2];
-    MPI_Allreduce(extremes, global, 2, MPI_DOUBLE, MPI_MIN, comm_);
+    MPI_Allreduce(extremes, global, 2, MPI_DOUBLE, MPI_MIN, context_.comm());
     const WaterForceTotals water = waterForces_->totals();
 
     Sample s;
@@ -342,16 +298,16 @@ void FloatingBlockScene::checkHealth() const
 {
     std::string failure = bonds_->failure();
     if (failure.empty()) failure = waterForces_->failure();
-    const long present = sumOverRanks(comm_, static_cast<long>(lmp_->engine().atom->nlocal));
+    const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp_->engine().atom->nlocal));
     if (failure.empty() && present != static_cast<long>(particles_.size()))
     {
         failure = std::to_string(particles_.size() - present) + " particle(s) left the simulation box";
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
-    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, comm_);
+    MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, context_.comm());
     if (anyFailed)
     {
-        curve_.write(path("postProcessing/draft.csv"));
+        curve_.write(context_.path("postProcessing/draft.csv"));
         throw RunError(failure.empty() ? "the run failed on another rank" : failure);
     }
 }
@@ -360,16 +316,16 @@ void FloatingBlockScene::checkHealth() const
 void FloatingBlockScene::writeFrame(int frame)
 {
     const GatheredState state = gatherState(*lmp_, *bonds_, -1);
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
     std::ostringstream name;
     name << "particles_" << std::setw(5) << std::setfill('0') << frame << ".vtp";
-    writeParticlesVtp(path("VTK/" + name.str()), state.particles);
+    writeParticlesVtp(context_.path("VTK/" + name.str()), state.particles);
     if (!particlesPvd_)
     {
-        particlesPvd_ = std::make_unique<PvdCollection>(path("VTK/particles.pvd"));
+        particlesPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/particles.pvd"));
     }
     particlesPvd_->add(lmp_->time(), name.str());
 }
@@ -378,19 +334,19 @@ void FloatingBlockScene::writeFrame(int frame)
 void FloatingBlockScene::run()
 {
     const auto wallStart = std::chrono::steady_clock::now();
-    log("floatingBlockDEM: a bonded ice block released on still water, case " + caseDir_ + ", "
-        + std::to_string(ranks_) + " rank(s)");
+    context_.log("floatingBlockDEM: a bonded ice block released on still water, case " + context_.caseDir() + ", "
+        + std::to_string(context_.ranks()) + " rank(s)");
     buildParticles();
     startLiggghts();
     int owned = lmp_->engine().atom->nlocal;
-    atomsPerRank_.assign(ranks_, 0);
-    MPI_Gather(&owned, 1, MPI_INT, atomsPerRank_.data(), 1, MPI_INT, 0, comm_);
+    atomsPerRank_.assign(context_.ranks(), 0);
+    MPI_Gather(&owned, 1, MPI_INT, atomsPerRank_.data(), 1, MPI_INT, 0, context_.comm());
 
     const long stepsPerSample = std::max(1L, std::lround(settings_.sampleInterval / dt_));
     const long samplesPerFrame = std::max(1L, std::lround(settings_.writeInterval / settings_.sampleInterval));
     const long maxSteps = std::lround(settings_.endTime / dt_);
     const double energyScale = totalMass_ * water_.hydrostatic.gravity * blockHeight_;
-    log("Released with its lowest point " + number(settings_.releaseDepth) + " m below the surface; "
+    context_.log("Released with its lowest point " + formatNumber(settings_.releaseDepth) + " m below the surface; "
         + std::to_string(stepsPerSample) + " steps per sample, at most " + std::to_string(maxSteps) + " steps");
 
     const Sample first = sample();
@@ -411,7 +367,7 @@ void FloatingBlockScene::run()
         ++sampleCount;
         last = sample();
         checkHealth();
-        broken += sumOverRanks(comm_, static_cast<long>(bonds_->takeLocalBreakEvents().size()));
+        broken += sumOverRanks(context_.comm(), static_cast<long>(bonds_->takeLocalBreakEvents().size()));
         const double time = lmp_->time();
         curve_.addRow({time, last.draft, last.draft / last.height, last.submergedFraction,
                        last.centre.x(), last.centre.y(), last.centre.z(), last.kinetic});
@@ -428,7 +384,7 @@ void FloatingBlockScene::run()
         if (sampleCount % samplesPerFrame == 0)
         {
             writeFrame(frame++);
-            curve_.write(path("postProcessing/draft.csv"));
+            curve_.write(context_.path("postProcessing/draft.csv"));
         }
         const auto now = std::chrono::steady_clock::now();
         if (std::chrono::duration<double>(now - lastLog).count() > 10.0)
@@ -438,11 +394,11 @@ void FloatingBlockScene::run()
             line << "t = " << std::fixed << std::setprecision(2) << time << " s  submerged "
                  << std::setprecision(4) << last.submergedFraction << "  draft/height " << last.draft / last.height
                  << std::scientific << std::setprecision(2) << "  kinetic " << last.kinetic / energyScale << " M g H";
-            log(line.str());
+            context_.log(line.str());
         }
         if (restSince >= 0.0 && time - restSince >= settings_.restDuration - 0.5 * dt_)
         {
-            log("At rest since t = " + number(restSince) + " s: stopping");
+            context_.log("At rest since t = " + formatNumber(restSince) + " s: stopping");
             break;
         }
     }
@@ -453,7 +409,7 @@ void FloatingBlockScene::run()
     end << "End: " << steps << " steps, t = " << lmp_->time() << " s; submerged volume fraction "
         << std::setprecision(6) << last.submergedFraction << " (rho_i/rho_w "
         << ice_.material.density / water_.hydrostatic.density << "), draft/height " << last.draft / last.height;
-    log(end.str());
+    context_.log(end.str());
 }
 
 
@@ -462,7 +418,7 @@ void FloatingBlockScene::writeSummary
     const Sample& last, double restTime, double maxDrift, long broken, double wall, long steps
 ) const
 {
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -472,37 +428,33 @@ void FloatingBlockScene::writeSummary
     const double draftIfLevel = levelDraft(level, ratio);
     const double energyScale = totalMass_ * water_.hydrostatic.gravity * blockHeight_;
 
-    std::ostringstream j;
-    j << std::setprecision(10) << "{\n"
-      << "  \"case\": \"floatingBlock\",\n"
-      << "  \"submerged_volume_fraction\": " << last.submergedFraction << ",\n"
-      << "  \"density_ratio\": " << ratio << ",\n"
-      << "  \"submerged_volume_fraction_error\": " << last.submergedFraction / ratio - 1.0 << ",\n"
-      << "  \"draft_m\": " << last.draft << ",\n"
-      << "  \"height_m\": " << last.height << ",\n"
-      << "  \"draft_over_height\": " << last.draft / last.height << ",\n"
-      << "  \"level_lattice_draft_m\": " << draftIfLevel << ",\n"
-      << "  \"draft_error_vs_level_lattice\": " << last.draft / draftIfLevel - 1.0 << ",\n"
-      << "  \"max_lateral_drift_m\": " << maxDrift << ",\n"
-      << "  \"kinetic_energy_J\": " << last.kinetic << ",\n"
-      << "  \"kinetic_energy_over_MgH\": " << last.kinetic / energyScale << ",\n"
-      << "  \"rest_threshold_over_MgH\": " << settings_.restKineticEnergy << ",\n"
-      << "  \"at_rest\": " << (restTime >= 0.0 ? "true" : "false") << ",\n"
-      << "  \"at_rest_since_s\": " << (restTime >= 0.0 ? number(restTime) : "null") << ",\n"
-      << "  \"end_time_s\": " << lmp_->time() << ",\n"
-      << "  \"broken_bonds\": " << broken << ",\n"
-      << "  \"particles\": " << particles_.size() << ",\n"
-      << "  \"bonds\": " << bondStats_.totalBonds << ",\n"
-      << "  \"steps\": " << steps << ",\n"
-      << "  \"dt\": " << dt_ << ",\n"
-      << "  \"ranks\": " << ranks_ << ",\n"
-      << "  \"atoms_per_rank_at_start\": [";
-    for (int k = 0; k < ranks_; ++k) j << (k ? ", " : "") << atomsPerRank_[k];
-    j << "],\n"
-      << "  \"wall_s\": " << wall << "\n"
-      << "}\n";
-    writeFileAtomically(path("postProcessing/summary.json"), j.str());
-    curve_.write(path("postProcessing/draft.csv"));
+    Json j;
+    j["case"] = "floatingBlock";
+    j["submerged_volume_fraction"] = last.submergedFraction;
+    j["density_ratio"] = ratio;
+    j["submerged_volume_fraction_error"] = last.submergedFraction / ratio - 1.0;
+    j["draft_m"] = last.draft;
+    j["height_m"] = last.height;
+    j["draft_over_height"] = last.draft / last.height;
+    j["level_lattice_draft_m"] = draftIfLevel;
+    j["draft_error_vs_level_lattice"] = last.draft / draftIfLevel - 1.0;
+    j["max_lateral_drift_m"] = maxDrift;
+    j["kinetic_energy_J"] = last.kinetic;
+    j["kinetic_energy_over_MgH"] = last.kinetic / energyScale;
+    j["rest_threshold_over_MgH"] = settings_.restKineticEnergy;
+    j["at_rest"] = restTime >= 0.0;
+    j["at_rest_since_s"] = restTime >= 0.0 ? Json(restTime) : Json(nullptr);
+    j["end_time_s"] = lmp_->time();
+    j["broken_bonds"] = broken;
+    j["particles"] = particles_.size();
+    j["bonds"] = bondStats_.totalBonds;
+    j["steps"] = steps;
+    j["dt"] = dt_;
+    j["ranks"] = context_.ranks();
+    j["atoms_per_rank_at_start"] = atomsPerRank_;
+    j["wall_s"] = wall;
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
+    curve_.write(context_.path("postProcessing/draft.csv"));
 }
 
 } // namespace iceDEM

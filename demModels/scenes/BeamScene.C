@@ -1,13 +1,15 @@
 #include "BeamScene.H"
+#include "Format.H"
 
 #include "Checkpoint.H"
+#include "CommandLine.H"
 
 #include "AtomicFile.H"
 #include "Dictionary.H"
 #include "ForceCurveAnalysis.H"
 #include "IceBondForces.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "RandomPacking.H"
@@ -37,12 +39,6 @@ namespace
 constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 
-std::string number(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
 
 
 } // namespace
@@ -51,42 +47,13 @@ std::string number(double v)
 BeamSceneOptions BeamSceneOptions::fromArguments(int argc, char** argv)
 {
     BeamSceneOptions o;
-    const std::string usage =
-        "usage: iceBeamDEM [-case DIR] [-particles N] [-platenSpeed M_PER_S] [-steps N] [-resume]";
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        auto value = [&]() -> std::string
-        {
-            if (k + 1 >= argc)
-            {
-                throw InputError("command line", arg, "needs a value; " + usage);
-            }
-            return argv[++k];
-        };
-        try
-        {
-            if (arg == "-case") o.caseDir = value();
-            else if (arg == "-particles") o.particles = std::stoi(value());
-            else if (arg == "-platenSpeed") o.platenSpeed = std::stod(value());
-            else if (arg == "-steps") o.steps = std::stol(value());
-            else if (arg == "-resume") o.resume = true;
-            else if (arg == "-help" || arg == "--help")
-            {
-                std::cout << usage << std::endl;
-                std::exit(0);
-            }
-            else throw InputError("command line", arg, "unknown option; " + usage);
-        }
-        catch (const std::logic_error&)
-        {
-            throw InputError("command line", arg, "'" + std::string(argv[k]) + "' is not a number");
-        }
-    }
-    if (o.particles < 0 || o.platenSpeed < 0.0 || o.steps < 0)
-    {
-        throw InputError("command line", "-particles/-platenSpeed/-steps", "must be positive");
-    }
+    CommandLine("iceBeamDEM")
+        .text("-case", "DIR", "the case directory (default .)", o.caseDir)
+        .count("-particles", "N", "particles in the beam instead of packing.particles", 20, o.particles)
+        .positive("-platenSpeed", "M_PER_S", "platen speed instead of platen.speed", o.platenSpeed)
+        .count("-steps", "N", "run exactly this many loading steps (benchmarks)", 1, o.steps)
+        .flag("-resume", "continue from the last checkpoint in DEM/checkpoint", o.resume)
+        .parse(argc, argv);
     return o;
 }
 
@@ -95,14 +62,14 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
 {
     BeamSceneSettings s;
     const Dictionary props = Dictionary::readFile(caseDir + "/constant/beamProperties");
-    props.checkKeys({"beam", "packing", "platen"});
+    props.checkKeys({"beam", "packing", "platen", "fieldReference"});
 
     auto positive = [](const Dictionary& d, const std::string& key, double def, bool required)
     {
         const double v = required ? d.getScalar(key) : d.getScalarOrDefault(key, def);
         if (!(v > 0.0))
         {
-            d.fail(key, number(v) + " is not allowed; expected a positive number");
+            d.fail(key, formatNumber(v) + " is not allowed; expected a positive number");
         }
         return v;
     };
@@ -115,8 +82,8 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     s.padLength = positive(beam, "padLength", 0, true);
     if (2.0 * s.padLength >= s.length)
     {
-        beam.fail("padLength", "the two end pads (" + number(2 * s.padLength)
-                  + " m) leave no free span in a beam " + number(s.length) + " m long");
+        beam.fail("padLength", "the two end pads (" + formatNumber(2 * s.padLength)
+                  + " m) leave no free span in a beam " + formatNumber(s.length) + " m long");
     }
 
     const Dictionary& packing = props.subDict("packing");
@@ -152,6 +119,16 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
         platen.fail("initialGap", "must not be negative");
     }
 
+    if (props.isDict("fieldReference"))
+    {
+        const Dictionary& field = props.subDict("fieldReference");
+        field.checkKeys({"elasticSlope", "peakForce", "halfLoadTravelAfterPeak"});
+        s.hasFieldReference = true;
+        s.fieldSlope = positive(field, "elasticSlope", 0, true);
+        s.fieldPeak = positive(field, "peakForce", 0, true);
+        s.fieldHalfLoadTravel = positive(field, "halfLoadTravelAfterPeak", 0, true);
+    }
+
     const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
     control.checkKeys
     ({
@@ -168,12 +145,10 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
 
 BeamScene::BeamScene(MPI_Comm comm, const BeamSceneOptions& options)
 :
-    comm_(comm),
+    context_(comm, options.caseDir, "iceBeamDEM"),
     options_(options)
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path("constant/iceProperties"));
+    ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     settings_ = BeamSceneSettings::read(options_.caseDir, options_);
 }
 
@@ -181,19 +156,6 @@ BeamScene::BeamScene(MPI_Comm comm, const BeamSceneOptions& options)
 BeamScene::~BeamScene() = default;
 
 
-std::string BeamScene::path(const std::string& relative) const
-{
-    return options_.caseDir + "/" + relative;
-}
-
-
-void BeamScene::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 void BeamScene::buildParticles()
@@ -207,19 +169,19 @@ void BeamScene::buildParticles()
     spec.seed = settings_.seed;
     body_ = buildBondedBody
     (
-        spec, ice_, path("constant/iceProperties"),
+        spec, ice_, context_.path("constant/iceProperties"),
         [&](std::vector<ParticleSpec>& particles)
         {
             markFixedEnds(particles, 0, settings_.padLength, spec.lo, spec.hi);
         },
-        [this](const std::string& line) { log(line); }
+        [this](const std::string& line) { context_.log(line); }
     );
 }
 
 
 void BeamScene::writeLiggghtsInputs() const
 {
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -228,7 +190,7 @@ void BeamScene::writeLiggghtsInputs() const
     const double margin = 0.5 * settings_.length;
     writeLiggghtsData
     (
-        path("DEM/packing.data"),
+        context_.path("DEM/packing.data"),
         "level-ice beam packing written by iceBeamDEM",
         body_.particles,
         ice_.material.density,
@@ -240,7 +202,7 @@ void BeamScene::writeLiggghtsInputs() const
     const double radius = 0.5 * settings_.platenDiameter;
     writeCylinderStl
     (
-        path("DEM/platen.stl"),
+        context_.path("DEM/platen.stl"),
         Vec3(0.5 * settings_.length, -radius - settings_.initialGap, -0.02),
         Vec3(0.0, 0.0, 1.0),
         radius,
@@ -253,20 +215,17 @@ void BeamScene::writeLiggghtsInputs() const
 
 void BeamScene::startLiggghts(const Checkpoint* resume)
 {
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
-    LiggghtsInstance& lmp = *lmp_;
 
     const double maxRadius = body_.maxRadius();
     const double skin = 0.2 * maxRadius;
 
     const std::string readParticles = resume
         ? "read_restart " + loading_->restartFile(*resume)
-        : "read_data " + path("DEM/packing.data");
+        : "read_data " + context_.path("DEM/packing.data");
     ScriptVariables variables
     {
         {"readParticles", "\"" + readParticles + "\""},
-        {"platenStl", path("DEM/platen.stl")},
+        {"platenStl", context_.path("DEM/platen.stl")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, maxRadius, skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(body_.dt)},
@@ -274,14 +233,8 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     };
     const ScriptVariables contactVars = contactVariables(body_.contact);
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
-    defineScriptVariables(lmp, variables, path("DEM/variables.generated"), "iceBeamDEM");
-
-    const std::string script = path("DEM/in.levelIceBeam");
-    if (!std::filesystem::exists(script))
-    {
-        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp.runScript(script);
+    lmp_ = context_.startLiggghts(variables, "DEM/in.levelIceBeam");
+    LiggghtsInstance& lmp = *lmp_;
 
     bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
 }
@@ -315,12 +268,12 @@ long BeamScene::freezeEjecta()
 void BeamScene::run()
 {
     const auto wallStart = std::chrono::steady_clock::now();
-    log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
-        + std::to_string(ranks_) + " rank(s)");
+    context_.log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
+        + std::to_string(context_.ranks()) + " rank(s)");
     buildParticles();
     loading_ = std::make_unique<PlatenLoading>
     (
-        comm_, options_.caseDir, "iceBeamDEM", settings_.loading, body_.dt,
+        context_.comm(), options_.caseDir, "iceBeamDEM", settings_.loading, body_.dt,
         static_cast<long>(body_.particles.size()), fixedType
     );
     std::unique_ptr<Checkpoint> resume;
@@ -329,7 +282,7 @@ void BeamScene::run()
         resume = std::make_unique<Checkpoint>(loading_->readCheckpoint());
     }
     writeLiggghtsInputs();
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
     startLiggghts(resume.get());
 
     PlatenLoading::Hooks hooks;
@@ -340,7 +293,7 @@ void BeamScene::run()
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     writeSummary(wall);
-    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
         + std::to_string(loading_->breakage().size()) + " bonds broken");
 }
 
@@ -352,7 +305,7 @@ void BeamScene::writeSummary(double wallSeconds) const
     const LoadingState& state = loading_->state();
     const double loopSeconds = loading_->loopSeconds();
     const long steps = state.steps, loopSteps = loading_->loopSteps();
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -400,50 +353,56 @@ void BeamScene::writeSummary(double wallSeconds) const
         }
     }
 
-    const double fieldSlope = 6.25e6, fieldPeak = 120000.0;
-    std::ostringstream j;
-    j << std::setprecision(10) << "{\n"
-      << "  \"case\": \"levelIceBeam\",\n"
-      << "  \"elastic_slope_N_per_m\": " << jsonNumber(rise.elasticSlope) << ",\n"
-      << "  \"elastic_slope_fit_R2\": " << jsonNumber(rise.slopeFitR2) << ",\n"
-      << "  \"first_peak_force_N\": " << jsonNumber(first.force) << ",\n"
-      << "  \"travel_at_first_peak_m\": " << jsonNumber(first.travel) << ",\n"
-      << "  \"peak_force_N\": " << jsonNumber(r.peakForce) << ",\n"
-      << "  \"travel_at_peak_m\": " << jsonNumber(r.travelAtPeak) << ",\n"
-      << "  \"half_load_reached\": " << (r.halfLoadReached ? "true" : "false") << ",\n"
-      << "  \"half_load_travel_after_peak_m\": "
-      << (r.halfLoadReached ? jsonNumber(r.halfLoadTravelAfterPeak) : "null") << ",\n"
-      << "  \"contact_onset_travel_m\": " << jsonNumber(onset) << ",\n"
-      << "  \"field\": {\"elastic_slope_N_per_m\": " << fieldSlope << ", \"peak_force_N\": " << fieldPeak
-      << ", \"half_load_travel_after_peak_m\": 0.07},\n"
-      << "  \"slope_error\": " << jsonNumber(rise.elasticSlope / fieldSlope - 1.0) << ",\n"
-      << "  \"first_peak_error\": " << jsonNumber(first.force / fieldPeak - 1.0) << ",\n"
-      << "  \"peak_error\": " << jsonNumber(r.peakForce / fieldPeak - 1.0) << ",\n"
-      << "  \"kinetic_to_elastic_energy_at_peak\": " << jsonNumber(state.kineticToElasticAtPeak) << ",\n"
-      << "  \"crack_pattern\": {\n"
-      << "    \"broken_bonds\": " << breaks.size() << ",\n"
-      << "    \"by_mode\": {\"tension\": " << breaks.count(BreakMode::tension)
-      << ", \"shear\": " << breaks.count(BreakMode::shear)
-      << ", \"twist\": " << breaks.count(BreakMode::twist)
-      << ", \"bending\": " << breaks.count(BreakMode::bending) << "},\n"
-      << "    \"share_within_10pct_of_span_from_centre\": "
-      << jsonNumber(breaks.empty() ? 0.0 : centreBreaks / breaks.size()) << ",\n"
-      << "    \"along_span_histogram\": [";
-    for (int b = 0; b < bins; ++b) j << (b ? ", " : "") << alongSpan[b];
-    j << "]\n  },\n"
-      << "  \"platen_speed_m_per_s\": " << settings_.platenSpeed << ",\n"
-      << "  \"particles\": " << body_.particles.size() << ",\n"
-      << "  \"ejected_particles_stopped\": " << state.frozenEjecta << ",\n"
-      << "  \"bonds\": " << body_.bondStats.totalBonds << ",\n"
-      << "  \"bonds_per_particle\": " << body_.bondStats.meanBondsPerParticle << ",\n"
-      << "  \"steps\": " << steps << ",\n"
-      << "  \"dt\": " << body_.dt << ",\n"
-      << "  \"ranks\": " << ranks_ << ",\n"
-      << "  \"wall_s\": " << wallSeconds << ",\n"
-      << "  \"loop_wall_s\": " << loopSeconds << ",\n"
-      << "  \"particle_steps_per_s\": " << loopSteps * body_.particles.size() / loopSeconds << "\n"
-      << "}\n";
-    writeFileAtomically(path("postProcessing/summary.json"), j.str());
+    auto orNull = [](bool known, double v) { return known ? Json(v) : Json(nullptr); };
+    Json j;
+    j["case"] = "levelIceBeam";
+    j["elastic_slope_N_per_m"] = rise.elasticSlope;
+    j["elastic_slope_fit_R2"] = rise.slopeFitR2;
+    j["first_peak_force_N"] = first.force;
+    j["travel_at_first_peak_m"] = first.travel;
+    j["peak_force_N"] = r.peakForce;
+    j["travel_at_peak_m"] = r.travelAtPeak;
+    j["half_load_reached"] = r.halfLoadReached;
+    j["half_load_travel_after_peak_m"] = orNull(r.halfLoadReached, r.halfLoadTravelAfterPeak);
+    j["contact_onset_travel_m"] = onset;
+    if (settings_.hasFieldReference)
+    {
+        j["field"] =
+        {
+            {"elastic_slope_N_per_m", settings_.fieldSlope},
+            {"peak_force_N", settings_.fieldPeak},
+            {"half_load_travel_after_peak_m", settings_.fieldHalfLoadTravel}
+        };
+        j["slope_error"] = rise.elasticSlope / settings_.fieldSlope - 1.0;
+        j["first_peak_error"] = first.force / settings_.fieldPeak - 1.0;
+        j["peak_error"] = r.peakForce / settings_.fieldPeak - 1.0;
+    }
+    j["kinetic_to_elastic_energy_at_peak"] = state.kineticToElasticAtPeak;
+    j["crack_pattern"] =
+    {
+        {"broken_bonds", breaks.size()},
+        {"by_mode",
+        {
+            {"tension", breaks.count(BreakMode::tension)},
+            {"shear", breaks.count(BreakMode::shear)},
+            {"twist", breaks.count(BreakMode::twist)},
+            {"bending", breaks.count(BreakMode::bending)}
+        }},
+        {"share_within_10pct_of_span_from_centre", breaks.empty() ? 0.0 : centreBreaks / breaks.size()},
+        {"along_span_histogram", alongSpan}
+    };
+    j["platen_speed_m_per_s"] = settings_.platenSpeed;
+    j["particles"] = body_.particles.size();
+    j["ejected_particles_stopped"] = state.frozenEjecta;
+    j["bonds"] = body_.bondStats.totalBonds;
+    j["bonds_per_particle"] = body_.bondStats.meanBondsPerParticle;
+    j["steps"] = steps;
+    j["dt"] = body_.dt;
+    j["ranks"] = context_.ranks();
+    j["wall_s"] = wallSeconds;
+    j["loop_wall_s"] = loopSeconds;
+    j["particle_steps_per_s"] = loopSteps * body_.particles.size() / loopSeconds;
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 
     // The curve again, with displacement measured from first contact.
     CsvWriter curve({"time", "travel", "displacement", "force", "brokenBonds", "kineticEnergy", "bondEnergy"});
@@ -452,7 +411,7 @@ void BeamScene::writeSummary(double wallSeconds) const
         const std::vector<double>& row = forceCurve.row(k);
         curve.addRow({row[0], row[1], row[1] - onset, row[2], row[3], row[4], row[5]});
     }
-    curve.write(path("postProcessing/platenForce.csv"));
+    curve.write(context_.path("postProcessing/platenForce.csv"));
 }
 
 } // namespace iceDEM

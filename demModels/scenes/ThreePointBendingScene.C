@@ -1,4 +1,6 @@
 #include "ThreePointBendingScene.H"
+#include "CommandLine.H"
+#include "Format.H"
 
 #include "AppMain.H"
 #include "AtomicFile.H"
@@ -7,7 +9,7 @@
 #include "ForceCurveAnalysis.H"
 #include "IceBondForces.H"
 #include "InputError.H"
-#include "JsonObject.H"
+#include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "RandomPacking.H"
@@ -36,12 +38,6 @@ constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 const char* const application = "threePointBendingDEM";
 
-std::string number(double v)
-{
-    std::ostringstream s;
-    s << std::setprecision(10) << v;
-    return s.str();
-}
 
 //- The positive entry `key` of d (InputError naming it otherwise).
 double positiveEntry(const Dictionary& d, const std::string& key)
@@ -49,7 +45,7 @@ double positiveEntry(const Dictionary& d, const std::string& key)
     const double v = d.getScalar(key);
     if (!(v > 0.0))
     {
-        d.fail(key, number(v) + " is not allowed; expected a positive number");
+        d.fail(key, formatNumber(v) + " is not allowed; expected a positive number");
     }
     return v;
 }
@@ -78,24 +74,14 @@ double touchingAxisHeight(const std::vector<ParticleSpec>& particles, double xAx
 ThreePointBendingOptions ThreePointBendingOptions::fromArguments(int argc, char** argv)
 {
     ThreePointBendingOptions o;
-    const std::string usage = std::string("usage: ") + application
-        + " [-case DIR] [-thickness M] [-quick] [-platenSpeed M_PER_S] [-steps N] [-resume]";
-    for (int k = 1; k < argc; ++k)
-    {
-        const std::string arg = argv[k];
-        if (arg == "-case" && k + 1 < argc) o.caseDir = argv[++k];
-        else if (arg == "-thickness") o.thickness = positiveNumberArgument(argc, argv, k);
-        else if (arg == "-platenSpeed") o.platenSpeed = positiveNumberArgument(argc, argv, k);
-        else if (arg == "-steps") o.steps = std::lround(positiveNumberArgument(argc, argv, k));
-        else if (arg == "-quick") o.quick = true;
-        else if (arg == "-resume") o.resume = true;
-        else if (arg == "-help" || arg == "--help")
-        {
-            std::cout << usage << std::endl;
-            std::exit(0);
-        }
-        else throw InputError("command line", arg, "unknown option or missing value; " + usage);
-    }
+    CommandLine(application)
+        .text("-case", "DIR", "the case directory (default .)", o.caseDir)
+        .positive("-thickness", "M", "beam thickness instead of beam.thickness", o.thickness)
+        .flag("-quick", "the quick resolution (packing.quickParticleDiameter, constant/iceProperties.quick)", o.quick)
+        .positive("-platenSpeed", "M_PER_S", "platen speed instead of platen.speed", o.platenSpeed)
+        .count("-steps", "N", "run exactly this many loading steps", 1, o.steps)
+        .flag("-resume", "continue from the last checkpoint in DEM/checkpoint", o.resume)
+        .parse(argc, argv);
     return o;
 }
 
@@ -126,8 +112,8 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     s.supportDiameter = positiveEntry(supports, "diameter");
     if (s.span > s.length)
     {
-        supports.fail("span", number(s.span) + " m is not allowed: the supports must lie under the beam, "
-                      "whose beam.length is " + number(s.length) + " m");
+        supports.fail("span", formatNumber(s.span) + " m is not allowed: the supports must lie under the beam, "
+                      "whose beam.length is " + formatNumber(s.length) + " m");
     }
 
     const Dictionary& platen = props.subDict("platen");
@@ -157,7 +143,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     if (s.particleDiameter > s.thickness)
     {
         packing.fail(options.quick ? "quickParticleDiameter" : "particleDiameter",
-                     number(s.particleDiameter) + " m does not fit in a beam " + number(s.thickness) + " m thick");
+                     formatNumber(s.particleDiameter) + " m does not fit in a beam " + formatNumber(s.thickness) + " m thick");
     }
     s.radiusSpread = packing.getScalarOrDefault("radiusSpread", 0.0);
     if (s.radiusSpread < 0.0 || s.radiusSpread >= 0.9)
@@ -210,13 +196,11 @@ double ThreePointBendingSettings::targetStrength() const
 
 ThreePointBendingScene::ThreePointBendingScene(MPI_Comm comm, const ThreePointBendingOptions& options)
 :
-    comm_(comm),
+    context_(comm, options.caseDir, application),
     options_(options),
     icePropertiesFile_(options.quick ? "constant/iceProperties.quick" : "constant/iceProperties")
 {
-    MPI_Comm_rank(comm_, &rank_);
-    MPI_Comm_size(comm_, &ranks_);
-    ice_ = IceProperties::read(path(icePropertiesFile_));
+    ice_ = IceProperties::read(context_.path(icePropertiesFile_));
     settings_ = ThreePointBendingSettings::read(options_.caseDir, options_);
 }
 
@@ -224,19 +208,6 @@ ThreePointBendingScene::ThreePointBendingScene(MPI_Comm comm, const ThreePointBe
 ThreePointBendingScene::~ThreePointBendingScene() = default;
 
 
-std::string ThreePointBendingScene::path(const std::string& relative) const
-{
-    return options_.caseDir + "/" + relative;
-}
-
-
-void ThreePointBendingScene::log(const std::string& line) const
-{
-    if (rank_ == 0)
-    {
-        std::cout << line << std::endl;
-    }
-}
 
 
 long ThreePointBendingScene::rampSteps() const
@@ -257,7 +228,7 @@ void ThreePointBendingScene::buildParticles()
     spec.radiusSpread = settings_.radiusSpread;
     spec.targetSolidFraction = settings_.solidFraction;
     spec.seed = settings_.seed;
-    body_ = buildBondedBody(spec, ice_, path(icePropertiesFile_), {}, [this](const std::string& l) { log(l); });
+    body_ = buildBondedBody(spec, ice_, context_.path(icePropertiesFile_), {}, [this](const std::string& l) { context_.log(l); });
 
     const double halfSlab = settings_.particleDiameter;
     const double midHeight = 0.5 * settings_.thickness;
@@ -284,7 +255,7 @@ void ThreePointBendingScene::buildParticles()
     }
     if (nMid == 0 || nSupports == 0)
     {
-        throw InputError(path("constant/bendingProperties"), "packing.particleDiameter",
+        throw InputError(context_.path("constant/bendingProperties"), "packing.particleDiameter",
             "the beam is too coarse to measure its deflection (no particles at mid-span or over a support)");
     }
     midspanHeight0_ = zMid / nMid;
@@ -294,7 +265,7 @@ void ThreePointBendingScene::buildParticles()
 
 void ThreePointBendingScene::writeLiggghtsInputs() const
 {
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -304,7 +275,7 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
     const double margin = 0.5;
     writeLiggghtsData
     (
-        path("DEM/packing.data"),
+        context_.path("DEM/packing.data"),
         "three-point bending beam packing written by threePointBendingDEM",
         body_.particles,
         ice_.material.density,
@@ -318,7 +289,7 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
     const double platenRadius = 0.5 * s.platenDiameter;
     writeCylinderStl
     (
-        path("DEM/platen.stl"),
+        context_.path("DEM/platen.stl"),
         Vec3(0.5 * s.length, -overhang, touchingAxisHeight(body_.particles, 0.5 * s.length, platenRadius, 1) + s.initialGap),
         across, platenRadius, s.width + 2.0 * overhang, 48, "platen"
     );
@@ -328,7 +299,7 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
         const double x = s.supportX(side);
         writeCylinderStl
         (
-            path(side == 0 ? "DEM/supportA.stl" : "DEM/supportB.stl"),
+            context_.path(side == 0 ? "DEM/supportA.stl" : "DEM/supportB.stl"),
             Vec3(x, -overhang, touchingAxisHeight(body_.particles, x, supportRadius, -1)),
             across, supportRadius, s.width + 2.0 * overhang, 48, side == 0 ? "supportA" : "supportB"
         );
@@ -338,20 +309,17 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
 
 void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
 {
-    LiggghtsInstance::reportErrorsFromLog(path("log.liggghts"));
-    lmp_ = std::make_unique<LiggghtsInstance>(comm_, path("log.liggghts"));
-    LiggghtsInstance& lmp = *lmp_;
 
     const double skin = 0.2 * body_.maxRadius();
     const std::string readParticles = resume
         ? "read_restart " + loading_->restartFile(*resume)
-        : "read_data " + path("DEM/packing.data");
+        : "read_data " + context_.path("DEM/packing.data");
     ScriptVariables variables
     {
         {"readParticles", "\"" + readParticles + "\""},
-        {"platenStl", path("DEM/platen.stl")},
-        {"supportAStl", path("DEM/supportA.stl")},
-        {"supportBStl", path("DEM/supportB.stl")},
+        {"platenStl", context_.path("DEM/platen.stl")},
+        {"supportAStl", context_.path("DEM/supportA.stl")},
+        {"supportBStl", context_.path("DEM/supportB.stl")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, body_.maxRadius(), skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(body_.dt)},
@@ -361,14 +329,8 @@ void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
     };
     const ScriptVariables contactVars = contactVariables(body_.contact);
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
-    defineScriptVariables(lmp, variables, path("DEM/variables.generated"), application);
-
-    const std::string script = path("DEM/in.threePointBending");
-    if (!std::filesystem::exists(script))
-    {
-        throw InputError(script, "(file)", "the LIGGGHTS input script is missing");
-    }
-    lmp.runScript(script);
+    lmp_ = context_.startLiggghts(variables, "DEM/in.threePointBending");
+    LiggghtsInstance& lmp = *lmp_;
     bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
 }
 
@@ -412,7 +374,7 @@ double ThreePointBendingScene::midspanDeflection() const
         }
     }
     double total[4];
-    MPI_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, comm_);
+    MPI_Allreduce(local, total, 4, MPI_DOUBLE, MPI_SUM, context_.comm());
     return (midspanHeight0_ - total[0] / total[1]) - (supportsHeight0_ - total[2] / total[3]);
 }
 
@@ -438,12 +400,12 @@ void ThreePointBendingScene::run()
     intro << application << ": three-point bending, beam " << settings_.length << " x " << settings_.width
           << " x " << settings_.thickness << " m, span " << settings_.span << " m, particles of "
           << settings_.particleDiameter << " m (" << icePropertiesFile_ << "), case " << options_.caseDir
-          << ", " << ranks_ << " rank(s)";
-    log(intro.str());
+          << ", " << context_.ranks() << " rank(s)";
+    context_.log(intro.str());
     buildParticles();
     loading_ = std::make_unique<PlatenLoading>
     (
-        comm_, options_.caseDir, application, settings_.loading, body_.dt,
+        context_.comm(), options_.caseDir, application, settings_.loading, body_.dt,
         static_cast<long>(body_.particles.size()), fixedType,
         std::vector<std::string>{"midspanDeflection", "supportReaction"}
     );
@@ -453,7 +415,7 @@ void ThreePointBendingScene::run()
         resume = std::make_unique<Checkpoint>(loading_->readCheckpoint());
     }
     writeLiggghtsInputs();
-    MPI_Barrier(comm_);
+    MPI_Barrier(context_.comm());
     startLiggghts(resume.get());
 
     PlatenLoading::Hooks hooks;
@@ -465,7 +427,7 @@ void ThreePointBendingScene::run()
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     writeSummary(wall);
-    log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
+    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
         + std::to_string(loading_->breakage().size()) + " bonds broken");
 }
 
@@ -475,7 +437,7 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     const CsvWriter& curve = loading_->curve();
     const BreakageRecord& breaks = loading_->breakage();
     const LoadingState& state = loading_->state();
-    if (rank_ != 0)
+    if (context_.rank() != 0)
     {
         return;
     }
@@ -520,54 +482,53 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
         centreBreaks += std::abs(e.position.x() - 0.5 * s.length) < 0.1 * s.span;
     }
 
-    JsonObject modes;
-    modes.add("tension", long(breaks.count(BreakMode::tension)))
-         .add("shear", long(breaks.count(BreakMode::shear)))
-         .add("twist", long(breaks.count(BreakMode::twist)))
-         .add("bending", long(breaks.count(BreakMode::bending)));
-    JsonObject j;
-    j.add("case", "threePointBending")
-     .add("resolution", options_.quick ? "quick" : "standard")
-     .add("thickness_m", s.thickness)
-     .add("length_m", s.length)
-     .add("width_m", s.width)
-     .add("span_m", s.span)
-     .add("particle_diameter_m", s.particleDiameter)
-     .add("failure_force_N", peak)
-     .add("travel_at_failure_m", displacement[peakIndex])
-     .add("peak_force_N", peak)
-     .add("first_peak_force_N", first.force)
-     .add("travel_at_first_peak_m", first.travel)
-     .add("flexural_strength_Pa", strength)
-     .add("target_strength_Pa", target)
-     .add("strength_error", strength / target - 1.0)
-     .add("elastic_slope_platen_N_per_m", platenFit.elasticSlope)
-     .add("elastic_slope_platen_fit_R2", platenFit.slopeFitR2)
-     .add("elastic_slope_deflection_N_per_m", deflectionFit.elasticSlope)
-     .add("elastic_slope_deflection_fit_R2", deflectionFit.slopeFitR2)
-     .add("effective_modulus_Pa", deflectionFit.elasticSlope / beamStiffness)
-     .add("effective_modulus_from_platen_Pa", platenFit.elasticSlope / beamStiffness)
-     .add("deflection_at_failure_m", deflection[peakIndex])
-     .add("support_reaction_at_failure_N", curve.row(peakIndex).back())
-     .add("contact_onset_travel_m", onset)
-     .add("kinetic_to_elastic_energy_at_peak", state.kineticToElasticAtPeak)
-     .add("broken_bonds", long(breaks.size()))
-     .add("broken_bonds_by_mode", modes)
-     .add("share_of_breaks_within_10pct_of_span_from_centre",
-          breaks.empty() ? 0.0 : double(centreBreaks) / breaks.size())
-     .add("platen_speed_m_per_s", s.platenSpeed)
-     .add("platen_ramp_time_s", rampTime)
-     .add("particles", long(body_.particles.size()))
-     .add("bonds", long(body_.bondStats.totalBonds))
-     .add("bonds_per_particle", body_.bondStats.meanBondsPerParticle)
-     .add("ejected_particles_stopped", long(state.frozenEjecta))
-     .add("steps", state.steps)
-     .add("dt", body_.dt)
-     .add("ranks", long(ranks_))
-     .add("wall_s", wallSeconds)
-     .add("loop_wall_s", loading_->loopSeconds())
-     .add("particle_steps_per_s", loading_->loopSteps() * double(body_.particles.size()) / loading_->loopSeconds());
-    writeFileAtomically(path("postProcessing/summary.json"), j.text() + "\n");
+    Json modes;
+    modes["tension"] = long(breaks.count(BreakMode::tension));
+    modes["shear"] = long(breaks.count(BreakMode::shear));
+    modes["twist"] = long(breaks.count(BreakMode::twist));
+    modes["bending"] = long(breaks.count(BreakMode::bending));
+    Json j;
+    j["case"] = "threePointBending";
+    j["resolution"] = options_.quick ? "quick" : "standard";
+    j["thickness_m"] = s.thickness;
+    j["length_m"] = s.length;
+    j["width_m"] = s.width;
+    j["span_m"] = s.span;
+    j["particle_diameter_m"] = s.particleDiameter;
+    j["failure_force_N"] = peak;
+    j["travel_at_failure_m"] = displacement[peakIndex];
+    j["peak_force_N"] = peak;
+    j["first_peak_force_N"] = first.force;
+    j["travel_at_first_peak_m"] = first.travel;
+    j["flexural_strength_Pa"] = strength;
+    j["target_strength_Pa"] = target;
+    j["strength_error"] = strength / target - 1.0;
+    j["elastic_slope_platen_N_per_m"] = platenFit.elasticSlope;
+    j["elastic_slope_platen_fit_R2"] = platenFit.slopeFitR2;
+    j["elastic_slope_deflection_N_per_m"] = deflectionFit.elasticSlope;
+    j["elastic_slope_deflection_fit_R2"] = deflectionFit.slopeFitR2;
+    j["effective_modulus_Pa"] = deflectionFit.elasticSlope / beamStiffness;
+    j["effective_modulus_from_platen_Pa"] = platenFit.elasticSlope / beamStiffness;
+    j["deflection_at_failure_m"] = deflection[peakIndex];
+    j["support_reaction_at_failure_N"] = curve.row(peakIndex).back();
+    j["contact_onset_travel_m"] = onset;
+    j["kinetic_to_elastic_energy_at_peak"] = state.kineticToElasticAtPeak;
+    j["broken_bonds"] = long(breaks.size());
+    j["broken_bonds_by_mode"] = modes;
+    j["share_of_breaks_within_10pct_of_span_from_centre"] = breaks.empty() ? 0.0 : double(centreBreaks) / breaks.size();
+    j["platen_speed_m_per_s"] = s.platenSpeed;
+    j["platen_ramp_time_s"] = rampTime;
+    j["particles"] = long(body_.particles.size());
+    j["bonds"] = long(body_.bondStats.totalBonds);
+    j["bonds_per_particle"] = body_.bondStats.meanBondsPerParticle;
+    j["ejected_particles_stopped"] = long(state.frozenEjecta);
+    j["steps"] = state.steps;
+    j["dt"] = body_.dt;
+    j["ranks"] = long(context_.ranks());
+    j["wall_s"] = wallSeconds;
+    j["loop_wall_s"] = loading_->loopSeconds();
+    j["particle_steps_per_s"] = loading_->loopSteps() * double(body_.particles.size()) / loading_->loopSeconds();
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
 
 } // namespace iceDEM

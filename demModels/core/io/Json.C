@@ -1,0 +1,11 @@
+#include "Json.H"
+
+namespace iceDEM
+{
+
+std::string jsonText(const Json& j)
+{
+    return j.dump(2) + "\n";
+}
+
+} // namespace iceDEM

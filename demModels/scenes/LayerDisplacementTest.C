@@ -1,0 +1,62 @@
+#include "LayerDisplacementTest.H"
+
+#include "LiggghtsInstance.H"
+#include "ParticleGather.H"
+
+#include "atom.h"
+#include "lammps.h"
+
+#include <utility>
+
+namespace iceDEM
+{
+
+LayerDisplacementTest::LayerDisplacementTest(std::string name, Axis axis)
+:
+    name_(std::move(name)),
+    axis_(axis)
+{}
+
+
+int LayerDisplacementTest::particleType(int, bool inLayer) const
+{
+    // Neither keel nor layer is integrated; the layer keeps the integrated
+    // type because LIGGGHTS' granular models need one.
+    return inLayer ? mobileType : fixedType;
+}
+
+
+double LayerDisplacementTest::force(const LiggghtsInstance& lmp, MPI_Comm comm, long layerFirstTag) const
+{
+    // What the actuator holding the layer must apply: minus the net force of
+    // bonds, contacts, gravity and water on the layer's particles.
+    const int axis = static_cast<int>(axis_);
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    double local = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (atom.tag[i] >= layerFirstTag) local -= atom.f[i][axis];
+    }
+    return sumOverRanks(comm, local);
+}
+
+
+void LayerDisplacementTest::startMotion(LiggghtsInstance& lmp, const std::string& speed, const std::string& travel) const
+{
+    lmp.command("variable layerV equal " + speed);
+    lmp.command("variable layerD equal " + travel);
+    // Every component given: a NULL one would be integrated from the forces.
+    lmp.command(axis_ == Axis::z
+        ? "fix moveLayer layer move variable v_zero v_zero v_layerD v_zero v_zero v_layerV"
+        : "fix moveLayer layer move variable v_layerD v_zero v_zero v_layerV v_zero v_zero");
+}
+
+
+void LayerDisplacementTest::addFigures(Json& j, const RidgeGeometry& g, double peak, double startForce) const
+{
+    const double area = g.length * g.width;
+    j["interface_area_m2"] = area;
+    j["interface_strength_Pa"] = (peak - startForce) / area;
+}
+
+} // namespace iceDEM
