@@ -10,7 +10,9 @@ again. Each run is then classified by postProcessing/failureAnalysis.py, and
 the results table (results/ridgeMatrix_<resolution>.csv and .md) and the plot
 (results/ridgeMatrix_<resolution>.png) are written.
 
-Usage: studies/ridgeMatrix.py [--resolution default|quick] [--jobs N] [--runs 1,2,5]
+Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5]
+  smoke (./Allrun -smoke): the quick settings on small keels of runs/smoke/keels
+  (1.6 x 0.4 m), 10 mm of platen travel, results in runs/smoke: checks that the case runs.
 """
 import argparse
 import concurrent.futures
@@ -40,6 +42,10 @@ QUICK = {
     "assembly.pressSpeed": 0.05,
 }
 
+# The smoke resolution: the small keels' box and a short travel (system/controlDict).
+SMOKE_BOX = (1.6, 0.4)
+SMOKE_CONTROLS = {"maxTravel": 0.01, "minTravel": 0}
+
 
 def matrix():
     path = os.path.join(iceCases.SHARED, "data", "ridgeMatrix.csv")
@@ -50,8 +56,8 @@ def matrix():
 
 
 def keel_case(run, resolution):
-    name = "keel" + run["keel"] + (QUICK["keelSuffix"] if resolution == "quick" else "")
-    return os.path.join(CASE, "keels", name)
+    name = "keel" + run["keel"] + (QUICK["keelSuffix"] if resolution != "default" else "")
+    return os.path.join(CASE, "runs", "smoke", "keels", name) if resolution == "smoke" else os.path.join(CASE, "keels", name)
 
 
 def run_dir(run, resolution):
@@ -70,10 +76,15 @@ def prepare(run, resolution, target=None):
     iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(settled, target))
     iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
     iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
-    if resolution == "quick":
+    if resolution != "default":
         for entry, value in QUICK.items():
             if "." in entry:
                 iceCases.set_entry(props, entry, value)
+    if resolution == "smoke":
+        iceCases.set_entry(props, "box.length", SMOKE_BOX[0])
+        iceCases.set_entry(props, "box.width", SMOKE_BOX[1])
+        for entry, value in SMOKE_CONTROLS.items():
+            iceCases.set_entry(os.path.join(target, "system", "controlDict"), entry, value)
     return target
 
 
@@ -120,8 +131,9 @@ def result_row(run, resolution):
 
 
 def write_table(rows, resolution):
-    os.makedirs(os.path.join(CASE, "results"), exist_ok=True)
-    base = os.path.join(CASE, "results", "ridgeMatrix_" + resolution)
+    folder = os.path.join(CASE, "runs", "smoke") if resolution == "smoke" else os.path.join(CASE, "results")
+    os.makedirs(folder, exist_ok=True)
+    base = os.path.join(folder, "ridgeMatrix_" + resolution)
     columns = list(rows[0].keys())
     lines = [",".join(columns)] + [",".join('"%s"' % r[c] if c == "evidence" else str(r[c]) for c in columns)
                                    for r in rows]
@@ -165,7 +177,7 @@ def plot(rows, base):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--resolution", choices=["default", "quick"], default="default")
+    parser.add_argument("--resolution", choices=["default", "quick", "smoke"], default="default")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--runs", default="", help="comma-separated run numbers (default: all 16)")
     args = parser.parse_args()

@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""Smoke test of one case: runs a copy of cases/CASE through its own ./Allrun
+with the given options, then checks the exit status and that each expected
+output file exists, is not empty and (if text) holds no nan.
+
+The copy lives in a mirror of the project, WORK/NAME/, so that the Allrun finds
+what it finds in the source tree by its relative paths (../.. is the top):
+  WORK/NAME/cases/CASE      the case (files git tracks or would add; no results)
+  WORK/NAME/cases/common    shared dictionaries, if the project has them
+  WORK/NAME/cases/OTHER     sibling cases the case reads (--with)
+  WORK/NAME/{build,postProcessing,bin,tests}  links to the build and the sources
+  WORK/shared               link to the project's ../shared (made by CMake)
+Nothing is written into the source tree.
+
+usage: runSmoke.py --source TOP --build BUILD --work WORK --case CASE [--name NAME]
+                   [--with OTHER ...] [--expect GLOB ...] -- ALLRUN_OPTIONS..."""
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+NAN = re.compile(rb"(?<![A-Za-z_])[-+]?nan(?![A-Za-z_])", re.I)
+
+
+def case_files(top, folder):
+    """Paths (relative to top) of a folder's files that git tracks or would add; all files without git."""
+    try:
+        out = subprocess.run(["git", "-C", top, "ls-files", "-z", "--cached", "--others", "--exclude-standard",
+                              "--", folder], check=True, capture_output=True).stdout
+        return [p for p in out.decode().split("\0") if p and os.path.isfile(os.path.join(top, p))]
+    except (OSError, subprocess.CalledProcessError):
+        return [os.path.relpath(os.path.join(d, f), top)
+                for d, _, files in os.walk(os.path.join(top, folder)) for f in files]
+
+
+def copy_folder(top, folder, mirror):
+    for rel in case_files(top, folder):
+        dest = os.path.join(mirror, rel)
+        os.makedirs(os.path.dirname(dest), exist_ok=True)
+        shutil.copy2(os.path.join(top, rel), dest)
+
+
+def check_output(case, pattern):
+    """A message for each problem with the files matching pattern (relative to the case)."""
+    paths = sorted(glob.glob(os.path.join(case, pattern)))
+    if not paths:
+        return [f"{pattern}: missing"]
+    problems = []
+    for path in paths:
+        rel = os.path.relpath(path, case)
+        data = open(path, "rb").read()
+        if not data:
+            problems.append(f"{rel}: empty")
+        elif b"\0" not in data[:4096] and NAN.search(data):
+            line = data[:NAN.search(data).start()].count(b"\n") + 1
+            problems.append(f"{rel}: nan at line {line}")
+    return problems
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--build", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--case", required=True)
+    ap.add_argument("--name", help="of the test and its folder (default: the case's)")
+    ap.add_argument("--with", dest="others", nargs="*", default=[])
+    ap.add_argument("--expect", nargs="*", default=[])
+    ap.add_argument("options", nargs="*")
+    a = ap.parse_args()
+    name = a.case
+    mirror = os.path.join(a.work, a.name or name)
+    shutil.rmtree(mirror, ignore_errors=True)
+    for folder in [name, "common", *a.others]:
+        if os.path.isdir(os.path.join(a.source, "cases", folder)):
+            copy_folder(a.source, os.path.join("cases", folder), mirror)
+    for link, target in (("build", a.build), ("postProcessing", "postProcessing"), ("bin", "bin"), ("tests", "tests")):
+        os.symlink(os.path.join(a.source, target), os.path.join(mirror, link))
+    case = os.path.join(mirror, "cases", name)
+    allrun = os.path.join(case, "Allrun")
+    if not os.access(allrun, os.X_OK):
+        sys.exit(f"smoke {name}: cases/{name}/Allrun missing or not executable")
+
+    cmd = [allrun, *a.options]
+    print(f"smoke {name}: {' '.join(['./Allrun', *a.options])} in {case}", flush=True)
+    start = time.time()
+    with open(os.path.join(mirror, "log.Allrun"), "w") as log:
+        rc = subprocess.run(cmd, cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode
+    output = open(os.path.join(mirror, "log.Allrun"), errors="replace").read()
+    print(output[-3000:], end="")
+    print(f"smoke {name}: ./Allrun exited {rc} after {time.time() - start:.1f} s (log {mirror}/log.Allrun)")
+    problems = [f"./Allrun {' '.join(a.options)} exited {rc}"] if rc else []
+    for pattern in a.expect:
+        problems += check_output(case, pattern)
+    for p in problems:
+        print(f"FAIL smoke {name}: {p}")
+    if not problems:
+        print(f"ok   smoke {name}: {len(a.expect)} output file pattern(s) present, non-empty, no nan")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
