@@ -267,7 +267,6 @@ long BeamScene::freezeEjecta()
 
 void BeamScene::run()
 {
-    const auto wallStart = std::chrono::steady_clock::now();
     context_.log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
         + std::to_string(context_.ranks()) + " rank(s)");
     buildParticles();
@@ -290,11 +289,9 @@ void BeamScene::run()
     hooks.stopEjecta = [this] { return freezeEjecta(); };
     loading_->run(*lmp_, *bonds_, hooks);
 
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    const double wall = context_.wallSeconds();
     writeSummary(wall);
-    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
-        + std::to_string(loading_->breakage().size()) + " bonds broken");
+    loading_->logEnd(wall);
 }
 
 

@@ -333,7 +333,6 @@ void FloatingBlockScene::writeFrame(int frame)
 
 void FloatingBlockScene::run()
 {
-    const auto wallStart = std::chrono::steady_clock::now();
     context_.log("floatingBlockDEM: a bonded ice block released on still water, case " + context_.caseDir() + ", "
         + std::to_string(context_.ranks()) + " rank(s)");
     buildParticles();
@@ -403,7 +402,7 @@ void FloatingBlockScene::run()
         }
     }
     writeFrame(frame++);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    const double wall = context_.wallSeconds();
     writeSummary(last, restSince, maxDrift, broken, wall, steps);
     std::ostringstream end;
     end << "End: " << steps << " steps, t = " << lmp_->time() << " s; submerged volume fraction "

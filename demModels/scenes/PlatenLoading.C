@@ -262,7 +262,7 @@ void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks
         }
         st.steps += chunk;
         ++st.sample;
-        sample(lmp, bonds, hooks, chunk);
+        sample(lmp, bonds, hooks);
 
         const double travel = control_.travelAt(lmp.time() - st.startTime);
         // Half load counts once the force stays below it; a dip that recovers
@@ -329,7 +329,14 @@ long PlatenLoading::stepsPerSampleInWholeAdvances(long stepsPerAdvance) const
 }
 
 
-void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, long chunk)
+void PlatenLoading::logEnd(double wallSeconds) const
+{
+    context_.log("End: " + std::to_string(state_.steps) + " steps in " + formatDuration(wallSeconds) + ", "
+        + std::to_string(breakage_.size()) + " bonds broken");
+}
+
+
+void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks)
 {
     LoadingState& st = state_;
     const double travel = control_.travelAt(lmp.time() - st.startTime);

@@ -764,8 +764,7 @@ void RidgeScene::load()
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     writeSummary(geometry, wall);
-    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
-        + std::to_string(loading_->breakage().size()) + " bonds broken");
+    loading_->logEnd(wall);
 }
 
 

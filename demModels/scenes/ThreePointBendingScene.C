@@ -395,7 +395,6 @@ long ThreePointBendingScene::stopEjecta()
 
 void ThreePointBendingScene::run()
 {
-    const auto wallStart = std::chrono::steady_clock::now();
     std::ostringstream intro;
     intro << application << ": three-point bending, beam " << settings_.length << " x " << settings_.width
           << " x " << settings_.thickness << " m, span " << settings_.span << " m, particles of "
@@ -424,11 +423,9 @@ void ThreePointBendingScene::run()
     hooks.stopEjecta = [this] { return stopEjecta(); };
     loading_->run(*lmp_, *bonds_, hooks);
 
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    const double wall = context_.wallSeconds();
     writeSummary(wall);
-    context_.log("End: " + std::to_string(loading_->state().steps) + " steps in " + formatDuration(wall) + ", "
-        + std::to_string(loading_->breakage().size()) + " bonds broken");
+    loading_->logEnd(wall);
 }
 
 
