@@ -359,14 +359,6 @@ public:
     }
 
 private:
-    //- Tokens of a value after $variables were expanded, or the dictionary
-    //  that a lone `$sub` names.
-    struct ExpandedValue
-    {
-        std::vector<DictToken> tokens;
-        const Dictionary* dict = nullptr;
-    };
-
     [[noreturn]] void syntaxError(const std::string& entry, int line, const std::string& what) const
     {
         throw InputError(fileName_, entry.empty() ? "(top level)" : entry, lineTag(line) + what);
@@ -465,15 +457,7 @@ private:
             return entry;
         }
 
-        ExpandedValue value = expandVariables(parseValue(path, t.line), path, scopes);
-        if (value.dict)
-        {
-            entry.dict = relocated(*value.dict, path);
-        }
-        else
-        {
-            entry.tokens = std::move(value.tokens);
-        }
+        entry.tokens = expandVariables(parseValue(path, t.line), path, scopes);
         return entry;
     }
 
@@ -603,37 +587,33 @@ private:
     }
 
     //- Each `$name` token replaced by the value of entry name (or of the
-    //  environment variable name when no entry has it); a lone `$name` of a
-    //  sub-dictionary gives that dictionary.
-    ExpandedValue expandVariables
+    //  environment variable name when no entry has it).
+    std::vector<DictToken> expandVariables
     (
         const std::vector<DictToken>& raw,
         const std::string& entryPath,
         const Scopes& scopes
     ) const
     {
-        ExpandedValue result;
+        std::vector<DictToken> result;
         for (const DictToken& t : raw)
         {
             if (t.kind != DictToken::Kind::word || t.text.size() < 2 || t.text[0] != '$')
             {
-                result.tokens.push_back(t);
+                result.push_back(t);
                 continue;
             }
             const std::string name = t.text.substr(1);
             const Dictionary::Entry* found = findVariable(scopes, name);
             if (found && found->dict)
             {
-                if (raw.size() != 1)
-                {
-                    syntaxError
-                    (
-                        entryPath, t.line,
-                        "'" + t.text + "' is a sub-dictionary; it can only stand alone as a value"
-                    );
-                }
-                result.dict = found->dict.get();
-                return result;
+                // OpenFOAM would paste the dictionary's entries as loose tokens here.
+                syntaxError
+                (
+                    entryPath, t.line,
+                    "'" + t.text + "' is a sub-dictionary; copy it with `"
+                  + entryPath.substr(entryPath.rfind('.') + 1) + " { " + t.text + "; }`"
+                );
             }
             std::vector<DictToken> replacement;
             if (found)
@@ -656,7 +636,7 @@ private:
             for (DictToken r : replacement)
             {
                 r.line = t.line;   // messages point at the use
-                result.tokens.push_back(std::move(r));
+                result.push_back(std::move(r));
             }
         }
         return result;

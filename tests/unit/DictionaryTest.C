@@ -515,7 +515,7 @@ TEST(DictionaryVariables, CopyingASubDictionary)
     (
         "ice { distFactor 1.1; youngsModulus 5.4e8; coeffs { alpha 0.1; } }\n"
         "freeze { $ice; distFactor 1.0; extra 1; }\n"
-        "copy $ice;\n"
+        "copy { $ice; }\n"
     );
     const Dictionary& freeze = d.subDict("freeze");
     EXPECT_EQ(freeze.keys(), (std::vector<std::string>{"distFactor", "youngsModulus", "coeffs", "extra"}));
@@ -538,8 +538,9 @@ TEST(DictionaryVariables, UndefinedOrMisusedNameTheFileLineAndVariable)
     EXPECT_CONTAINS
     (
         errorOf([&] { parse("a { x 1; }\nb (1 $a);\n"); }),
-        "line 2: '$a' is a sub-dictionary; it can only stand alone"
+        "line 2: '$a' is a sub-dictionary; copy it with `b { $a; }`"
     );
+    EXPECT_CONTAINS(errorOf([&] { parse("a { x 1; }\ns { b $a; }\n"); }), "entry 's.b'");
     EXPECT_CONTAINS
     (
         errorOf([&] { parse("a 1;\nb { $a; }\n"); }),
