@@ -1,5 +1,6 @@
-"""Helpers for studies that run many variants of a case: copy a case, set
-dictionary entries by their dotted path (as foamDictionary -entry -set does),
+"""Helpers for studies that run many variants of a case: copy a case (with the
+cases/common it includes), set dictionary entries by their dotted path (as
+foamDictionary -entry -set does),
 run an application under mpirun, and read the results.
 
 Used by the sweep, speed-study and benchmark scripts with Debian's
@@ -19,7 +20,7 @@ BUILD = os.path.join(TOP, "build")
 
 def _block_span(text, start, name):
     """(open, close) indices of the braces of sub-dictionary `name` in text[start:close]."""
-    pattern = re.compile(r"(^|[\s;{}])" + re.escape(name) + r"\s*\{", re.M)
+    pattern = re.compile(r"(^|[\s;{}])" + re.escape(name) + r"(?:\s|//[^\n]*)*\{", re.M)
     depth_ok = None
     for m in pattern.finditer(text, start):
         # accept only matches at brace depth 0 relative to `start`
@@ -55,18 +56,82 @@ def _entry_value_span(text, dotted, path):
     raise KeyError(f"{dotted} not found in {path}")
 
 
+_INCLUDE = re.compile(r'^[ \t]*#include(?:IfPresent)?[ \t]*"([^"]*)"', re.M)
+
+
+def included_files(path):
+    """The files that path's top-level #include lines name, resolved against its folder."""
+    folder = os.path.dirname(path)
+    names = (os.path.join(folder, name) for name in _INCLUDE.findall(open(path).read()))
+    return [name for name in names if os.path.isfile(name)]
+
+
 def get_entry(path, dotted):
-    """The value text of `a.b.key value;` in an OpenFOAM dictionary file."""
+    """The value text of `a.b.key value;` in an OpenFOAM dictionary file, or, when the
+    file does not write it, in the files it #includes (the last include first)."""
     text = open(path).read()
-    begin, end = _entry_value_span(text, dotted, path)
-    return text[begin:end]
+    try:
+        begin, end = _entry_value_span(text, dotted, path)
+        return text[begin:end]
+    except KeyError:
+        for included in reversed(included_files(path)):
+            try:
+                return get_entry(included, dotted)
+            except KeyError:
+                pass
+        raise
 
 
 def set_entry(path, dotted, value):
-    """Sets `a.b.key value;` in an OpenFOAM dictionary file (the entry must exist)."""
+    """Sets `a.b.key value;` in an OpenFOAM dictionary file. The entry must exist, in
+    the file or in a file it #includes; in the latter case an override is added to
+    the file after the include (inside the sub-dictionaries of the path the file
+    already has, so the file writes each keyword once)."""
     text = open(path).read()
-    begin, end = _entry_value_span(text, dotted, path)
-    open(path, "w").write(text[:begin] + str(value) + text[end:])
+    try:
+        begin, end = _entry_value_span(text, dotted, path)
+        open(path, "w").write(text[:begin] + str(value) + text[end:])
+    except KeyError:
+        get_entry(path, dotted)   # raises KeyError when no include has it either
+        open(path, "w").write(_with_override(text, dotted, value))
+
+
+def _with_override(text, dotted, value):
+    """text with `a { b { key value; } }` added: into the deepest of a, a.b, ... that
+    it has, otherwise before its closing `// ****` line (or at its end)."""
+    *dicts, key = dotted.split(".")
+    start, insert_at, depth = 0, None, 0
+    for name in dicts:
+        try:
+            open_brace, close_brace = _block_span(text[:insert_at or len(text)], start, name)
+        except KeyError:
+            break
+        start, insert_at, depth = open_brace + 1, close_brace, depth + 1
+    missing = dicts[depth:]
+    indent = "    " * depth
+    lines = [indent + "    " * i + name + "\n" + indent + "    " * i + "{" for i, name in enumerate(missing)]
+    lines.append(indent + "    " * len(missing) + f"{key} {value};")
+    lines += [indent + "    " * i + "}" for i in reversed(range(len(missing)))]
+    block = "\n".join(lines) + "\n"
+    if insert_at is not None:
+        line_start = text.rfind("\n", 0, insert_at) + 1
+        if not text[line_start:insert_at].strip():
+            insert_at = line_start   # the closing brace stands on its own line
+        elif text[insert_at - 1] != "\n":
+            block = "\n" + block
+        return text[:insert_at] + block + text[insert_at:]
+    footer = text.rfind("\n// ****")
+    at = footer + 1 if footer >= 0 else len(text)
+    return text[:at] + block + "\n" + text[at:]
+
+
+def copy_common(case_copy):
+    """cases/common copied to <case_copy>/../common, where the `#include
+    "../../common/..."` of a copied case's dictionaries looks (see cases/common/README.md)."""
+    source = os.path.join(TOP, "cases", "common")
+    target = os.path.join(os.path.dirname(os.path.abspath(case_copy)), "common")
+    if os.path.realpath(target) != os.path.realpath(source):
+        shutil.copytree(source, target, dirs_exist_ok=True)
 
 
 def copy_case(source, target):
@@ -79,6 +144,7 @@ def copy_case(source, target):
         p = os.path.join(target, generated)
         if os.path.exists(p):
             os.remove(p)
+    copy_common(target)
     return target
 
 

@@ -20,7 +20,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(TOP, "postProcessing"))
-from iceCases import write_atomically  # noqa: E402
+from iceCases import copy_common, write_atomically  # noqa: E402
 
 DIAMETER, RHO_P, G = 0.015, 1120.0, 9.81
 
@@ -48,6 +48,7 @@ def run(exp, app, end_time):
     os.makedirs(case)
     for sub in ("0", "constant", "system", "DEM"):
         shutil.copytree(os.path.join(HERE, sub), os.path.join(case, sub))
+    copy_common(case)
     rho_f, mu = float(exp["rho_f"]), float(exp["mu_f_Pa_s"])
     transport = os.path.join(case, "constant", "transportProperties")
     for entry, value in (("rho", rho_f), ("nu", mu / rho_f)):

@@ -6,6 +6,7 @@
 set -uo pipefail
 src=$1 work=$2 app=$3 checks=${4:-coupling}
 failures=0
+source "$(dirname "${BASH_SOURCE[0]}")/../../bin/caseCommon.sh"   # copy_case_common
 
 # expectRefusal NAME EXPECTED_MESSAGE FILE:ENTRY=VALUE...
 expectRefusal() {
@@ -15,6 +16,7 @@ expectRefusal() {
     rm -rf "$dir"
     mkdir -p "$dir"
     cp -r "$src/0" "$src/constant" "$src/system" "$src/DEM" "$dir/"
+    copy_case_common "$dir"
     for change in "$@"; do
         local file=${change%%:*} setting=${change#*:}
         foamDictionary -entry "${setting%%=*}" -set "${setting#*=}" "$dir/$file" > /dev/null

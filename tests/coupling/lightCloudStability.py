@@ -16,6 +16,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+from iceCases import copy_common  # noqa: E402
+
 
 def run(src, work, app, name, changes):
     case = os.path.join(work, name)
@@ -23,6 +26,7 @@ def run(src, work, app, name, changes):
     os.makedirs(case)
     for sub in ("0", "constant", "system", "DEM"):
         shutil.copytree(os.path.join(src, sub), os.path.join(case, sub))
+    copy_common(case)
     for file, entry, value in changes:
         subprocess.run(["foamDictionary", "-entry", entry, "-set", str(value), os.path.join(case, file)],
                        check=True, stdout=subprocess.DEVNULL)

@@ -8,6 +8,8 @@ shift 4
 rm -rf "$dest"
 mkdir -p "$dest"
 cp -r "$src/0" "$src/constant" "$src/system" "$src/DEM" "$dest/"
+source "$(dirname "${BASH_SOURCE[0]}")/../../bin/caseCommon.sh"
+copy_case_common "$dest"
 foamDictionary -entry endTime -set "$endTime" "$dest/system/controlDict" > /dev/null
 for change in "$@"; do
     file=${change%%:*} setting=${change#*:}

@@ -17,7 +17,6 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 import time
@@ -183,9 +182,8 @@ def weaken_freeze_bonds(case):
     """The `ultimate` set of the case's freezeBondProperties made 1 Pa: blocks and layer touch
     but are not held together."""
     bonds = os.path.join(case, "constant", "freezeBondProperties")
-    text = open(bonds).read()
-    line = re.search(r"\n *ultimate *\{[^}]*\}", text)
-    open(bonds, "w").write(text[:line.start()] + "\n        ultimate { tensile 1; shear 1; }" + text[line.end():])
+    iceCases.set_entry(bonds, "fixedSetCoeffs.sets.ultimate.tensile", 1)
+    iceCases.set_entry(bonds, "fixedSetCoeffs.sets.ultimate.shear", 1)
     iceCases.set_entry(bonds, "fixedSetCoeffs.set", "ultimate")
 
 

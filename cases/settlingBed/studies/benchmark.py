@@ -31,7 +31,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(CASE, "..", "..", "postProcessing"))
-from iceCases import BUILD, copy_case, get_entry, run_app, set_entry, write_atomically  # noqa: E402
+from iceCases import BUILD, copy_case, copy_common, get_entry, run_app, set_entry, write_atomically  # noqa: E402
 
 ICEFOAM = os.path.join(BUILD, "coupling", "iceFoam")
 DEM_APP = os.path.join(BUILD, "coupling", "settlingBedDEM")
@@ -77,6 +77,7 @@ def prepare_dpm_case(end_time):
     case = os.path.join(HERE, "benchmark", "DPMFoam")
     shutil.rmtree(case, ignore_errors=True)
     shutil.copytree(os.path.join(CASE, "dpmFoam"), case)
+    copy_common(case)
     shutil.copy(os.path.join(CASE, "system", "blockMeshDict"), os.path.join(case, "system"))
     shutil.copy(os.path.join(CASE, "constant", "g"), os.path.join(case, "constant"))
     points = lattice_positions(os.path.join(CASE, "constant", "couplingProperties"))

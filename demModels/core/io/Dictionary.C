@@ -5,7 +5,10 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <system_error>
 
@@ -141,6 +144,19 @@ std::vector<DictToken> tokenise(const std::string& text, const std::string& file
             ++i;
             tokens.push_back({DictToken::Kind::string, s, startLine});
         }
+        else if (c == '$' && i + 1 < n && text[i + 1] == '{')
+        {
+            const std::size_t close = text.find('}', i);
+            if (close == std::string::npos || text.find('\n', i) < close)
+            {
+                throw InputError
+                (
+                    fileName, syntaxEntry, lineTag(line) + "'${' is not closed by '}' on its line"
+                );
+            }
+            tokens.push_back({DictToken::Kind::word, "$" + text.substr(i + 2, close - i - 2), line});
+            i = close + 1;
+        }
         else if (isPunct(c))
         {
             tokens.push_back({DictToken::Kind::punct, std::string(1, c), line});
@@ -207,40 +223,138 @@ std::string closest(const std::string& word, const std::vector<std::string>& all
     return best;
 }
 
+//- The whole text of a regular file; false if it cannot be read.
+bool readText(const std::string& path, std::string& text)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (!in || in.bad()) return false;
+    text = buffer.str();
+    return true;
+}
+
+//- Where `#include "written"` in file includer points: an absolute path as
+//  written, a relative one relative to the includer's directory.
+std::string includePath(const std::string& includer, const std::string& written)
+{
+    const std::filesystem::path target(written);
+    if (target.is_absolute()) return target.lexically_normal().string();
+    return (std::filesystem::path(includer).parent_path() / target).lexically_normal().string();
+}
+
+//- A file's canonical path (to recognise it when included again), or the
+//  path itself when it cannot be resolved.
+std::string fileIdentity(const std::string& path)
+{
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+    return ec ? path : canonical.string();
+}
+
+std::vector<std::string> split(const std::string& text, char separator)
+{
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true)
+    {
+        const std::size_t end = text.find(separator, start);
+        parts.push_back(text.substr(start, end - start));
+        if (end == std::string::npos) return parts;
+        start = end + 1;
+    }
+}
+
+//- The entry that $name names, nullptr if none. scopes: the dictionaries
+//  enclosing the use, outermost first. As OpenFOAM: `a` is looked up from
+//  the innermost scope outward; `a.b.c` finds `a` so and descends; `:a.b`
+//  (or `^a.b`) starts at the top level; each dot beyond the first of a
+//  leading `..a` goes up one level; `/a/b`, `../a` and `a/b` are the
+//  slash-separated forms.
+const Dictionary::Entry* findVariable
+(
+    const std::vector<const Dictionary*>& scopes,
+    std::string name
+)
+{
+    std::size_t level = scopes.size() - 1;
+    bool outward = true;
+    const char separator = name.find('/') != std::string::npos ? '/' : '.';
+    if (name[0] == ':' || name[0] == '^' || (separator == '/' && name[0] == '/'))
+    {
+        level = 0;
+        outward = false;
+        name.erase(0, 1);
+    }
+    else if (separator == '.' && name[0] == '.')
+    {
+        const std::size_t dots = name.find_first_not_of('.');
+        if (dots == std::string::npos || dots - 1 > level) return nullptr;
+        level -= dots - 1;
+        outward = false;
+        name.erase(0, dots);
+    }
+
+    std::vector<std::string> parts = split(name, separator);
+    while (separator == '/' && !parts.empty() && (parts[0] == "." || parts[0] == ".."))
+    {
+        if (parts[0] == "..")
+        {
+            if (level == 0) return nullptr;
+            --level;
+        }
+        outward = false;
+        parts.erase(parts.begin());
+    }
+    if (parts.empty()) return nullptr;
+
+    const Dictionary::Entry* found = nullptr;
+    for (std::size_t l = level + 1; l-- > 0 && !found; )
+    {
+        if (scopes[l]->found(parts[0])) found = &scopes[l]->entry(parts[0]);
+        if (!outward) break;
+    }
+    for (std::size_t i = 1; i < parts.size() && found; ++i)
+    {
+        const bool descends = found->dict && found->dict->found(parts[i]);
+        found = descends ? &found->dict->entry(parts[i]) : nullptr;
+    }
+    return found;
+}
+
 } // namespace
 
 
 // * * * * * * * * * * * * * * * * Parser  * * * * * * * * * * * * * * * * //
 
-//- Builds the Dictionary tree from the token list.
+//- Builds the Dictionary tree from the tokens of one file; an #include hands
+//  the included file to a nested parser that adds to the same dictionary.
 class DictionaryParser
 {
 public:
-    DictionaryParser(std::vector<DictToken> tokens, const std::string& fileName)
+    //- Dictionaries enclosing the one being read, outermost first, it last:
+    //  where a $variable is looked up.
+    using Scopes = std::vector<const Dictionary*>;
+
+    DictionaryParser
+    (
+        const std::string& text,
+        const std::string& fileName,
+        std::vector<std::string> includeChain
+    )
     :
-        tokens_(std::move(tokens)),
-        fileName_(fileName)
+        tokens_(tokenise(text, fileName)),
+        fileName_(fileName),
+        includeChain_(std::move(includeChain))
     {}
 
     Dictionary parseTop()
     {
         Dictionary top(fileName_, "", 0);
-        parseEntries(top, nullptr);
-
-        const Dictionary::Entry* header = top.lookup("FoamFile");
-        if (header && !header->dict)
-        {
-            syntaxError("FoamFile", header->line, "the FoamFile header must be a dictionary { ... }");
-        }
-        top.entries_.erase
-        (
-            std::remove_if
-            (
-                top.entries_.begin(), top.entries_.end(),
-                [](const Dictionary::Entry& e) { return e.keyword == "FoamFile"; }
-            ),
-            top.entries_.end()
-        );
+        Scopes scopes{&top};
+        parseEntries(top, nullptr, scopes);
         return top;
     }
 
@@ -255,9 +369,12 @@ private:
         return parent.empty() ? key : parent + "." + key;
     }
 
-    //- Entries up to the matching '}' (opening != nullptr) or to the end.
-    void parseEntries(Dictionary& dict, const DictToken* opening)
+    //- Entries up to the matching '}' (opening != nullptr) or to the end of
+    //  the file (the file's top level, which may be a sub-dictionary that
+    //  includes it).
+    void parseEntries(Dictionary& dict, const DictToken* opening, Scopes& scopes)
     {
+        std::map<std::string, int> writtenHere;   // keyword -> line, for duplicates
         while (true)
         {
             if (pos_ == tokens_.size())
@@ -281,48 +398,248 @@ private:
             }
             if (isPunct(t, ';'))
             {
-                continue;   // stray ';' as in "name { ... };"
+                continue;   // stray ';' as in "name { ... };" or "#include "f";"
             }
             if (t.kind != DictToken::Kind::word)
             {
                 syntaxError(dict.path_, t.line, "expected a keyword, found '" + render(t) + "'");
             }
-            if (t.text[0] == '#' || t.text[0] == '$')
+            if (t.text[0] == '#')
             {
-                syntaxError
-                (
-                    dotted(dict.path_, t.text), t.line,
-                    "directives (#...) and macros ($...) are not supported"
-                );
+                parseDirective(dict, t, scopes);
+                continue;
             }
-            if (const Dictionary::Entry* previous = dict.lookup(t.text))
+            if (t.text.size() > 1 && t.text[0] == '$')
+            {
+                mergeNamedDict(dict, t, scopes);
+                continue;
+            }
+
+            const auto [first, isNew] = writtenHere.emplace(t.text, t.line);
+            if (!isNew)
             {
                 syntaxError
                 (
                     dotted(dict.path_, t.text), t.line,
-                    "duplicate entry (first defined at line " + std::to_string(previous->line) + ")"
+                    "duplicate entry (first defined at line " + std::to_string(first->second) + ")"
                 );
             }
 
-            Dictionary::Entry entry;
-            entry.keyword = t.text;
-            entry.line = t.line;
-            if (pos_ < tokens_.size() && isPunct(tokens_[pos_], '{'))
+            Dictionary::Entry entry = parseEntry(dict, t, scopes);
+            if (!opening && entry.keyword == "FoamFile")
             {
-                const DictToken& brace = tokens_[pos_++];
-                auto sub = std::make_shared<Dictionary>
+                if (!entry.dict)
+                {
+                    syntaxError("FoamFile", t.line, "the FoamFile header must be a dictionary { ... }");
+                }
+                continue;   // the header of this file, not content
+            }
+            addEntry(dict, std::move(entry));
+        }
+    }
+
+    //- The entry whose keyword is t: a sub-dictionary or a value.
+    Dictionary::Entry parseEntry(const Dictionary& dict, const DictToken& t, Scopes& scopes)
+    {
+        Dictionary::Entry entry;
+        entry.keyword = t.text;
+        entry.fileName = fileName_;
+        entry.line = t.line;
+        const std::string path = dotted(dict.path_, t.text);
+        if (pos_ < tokens_.size() && isPunct(tokens_[pos_], '{'))
+        {
+            const DictToken& brace = tokens_[pos_++];
+            auto sub = std::make_shared<Dictionary>(Dictionary(fileName_, path, brace.line));
+            scopes.push_back(sub.get());
+            parseEntries(*sub, &brace, scopes);
+            scopes.pop_back();
+            entry.dict = std::move(sub);
+            return entry;
+        }
+
+        entry.tokens = expandVariables(parseValue(path, t.line), path, scopes);
+        return entry;
+    }
+
+    //- OpenFOAM's merge rule: a new sub-dictionary merges into an existing
+    //  one of the same keyword; anything else replaces the existing entry
+    //  where it stands.
+    static void addEntry(Dictionary& dict, Dictionary::Entry entry)
+    {
+        auto existing = std::find_if
+        (
+            dict.entries_.begin(), dict.entries_.end(),
+            [&](const Dictionary::Entry& e) { return e.keyword == entry.keyword; }
+        );
+        if (existing == dict.entries_.end())
+        {
+            dict.entries_.push_back(std::move(entry));
+        }
+        else if (existing->dict && entry.dict)
+        {
+            auto merged = std::make_shared<Dictionary>(*existing->dict);
+            for (const Dictionary::Entry& e : entry.dict->entries_)
+            {
+                addEntry(*merged, e);
+            }
+            existing->dict = std::move(merged);
+        }
+        else
+        {
+            *existing = std::move(entry);
+        }
+    }
+
+    //- A copy of src whose entries carry the dotted paths under `path`.
+    static std::shared_ptr<const Dictionary> relocated(const Dictionary& src, const std::string& path)
+    {
+        auto copy = std::make_shared<Dictionary>(src);
+        copy->path_ = path;
+        for (Dictionary::Entry& e : copy->entries_)
+        {
+            if (e.dict) e.dict = relocated(*e.dict, dotted(path, e.keyword));
+        }
+        return copy;
+    }
+
+    // * * * * * * * * * * * * * * * Includes * * * * * * * * * * * * * * * //
+
+    void parseDirective(Dictionary& dict, const DictToken& directive, Scopes& scopes)
+    {
+        const std::string entry = dotted(dict.path_, directive.text);
+        const bool optional = directive.text == "#includeIfPresent";
+        if (directive.text != "#include" && !optional)
+        {
+            syntaxError
+            (
+                entry, directive.line,
+                "directive '" + directive.text
+              + "' is not supported (only #include and #includeIfPresent are)"
+            );
+        }
+        if (pos_ == tokens_.size() || tokens_[pos_].kind == DictToken::Kind::punct)
+        {
+            syntaxError(entry, directive.line, directive.text + " needs a file name such as \"file\"");
+        }
+        const std::string written = tokens_[pos_++].text;
+        const std::string path = includePath(fileName_, written);
+
+        const std::string identity = fileIdentity(path);
+        if (std::find(includeChain_.begin(), includeChain_.end(), identity) != includeChain_.end())
+        {
+            syntaxError
+            (
+                entry, directive.line,
+                "include cycle: '" + path + "' is already being read (" + chainText(path) + ")"
+            );
+        }
+
+        std::string text;
+        if (!readText(path, text))
+        {
+            if (optional) return;
+            syntaxError
+            (
+                entry, directive.line,
+                "cannot open the included file \"" + written + "\" (tried '" + path + "')"
+            );
+        }
+
+        std::vector<std::string> chain = includeChain_;
+        chain.push_back(identity);
+        DictionaryParser included(text, path, std::move(chain));
+        included.parseEntries(dict, nullptr, scopes);
+    }
+
+    //- The include chain of this file, and path, as "a -> b -> path".
+    std::string chainText(const std::string& path) const
+    {
+        std::string s;
+        for (const std::string& f : includeChain_) s += f + " -> ";
+        return s + fileIdentity(path);
+    }
+
+    // * * * * * * * * * * * * * * Variables * * * * * * * * * * * * * * * //
+
+    //- `$sub;` as an entry: the entries of sub-dictionary sub merged in here.
+    void mergeNamedDict(Dictionary& dict, const DictToken& t, const Scopes& scopes)
+    {
+        const std::string name = t.text.substr(1);
+        const Dictionary::Entry* found = findVariable(scopes, name);
+        if (!found)
+        {
+            syntaxError(dotted(dict.path_, t.text), t.line, "undefined variable '" + t.text + "'");
+        }
+        if (!found->dict)
+        {
+            syntaxError
+            (
+                dotted(dict.path_, t.text), t.line,
+                "'" + t.text + "' is not a sub-dictionary; `$name;` as an entry"
+                " copies the entries of a sub-dictionary"
+            );
+        }
+        const std::shared_ptr<const Dictionary> copy = relocated(*found->dict, dict.path_);
+        for (const Dictionary::Entry& e : copy->entries_)
+        {
+            addEntry(dict, e);
+        }
+    }
+
+    //- Each `$name` token replaced by the value of entry name (or of the
+    //  environment variable name when no entry has it).
+    std::vector<DictToken> expandVariables
+    (
+        const std::vector<DictToken>& raw,
+        const std::string& entryPath,
+        const Scopes& scopes
+    ) const
+    {
+        std::vector<DictToken> result;
+        for (const DictToken& t : raw)
+        {
+            if (t.kind != DictToken::Kind::word || t.text.size() < 2 || t.text[0] != '$')
+            {
+                result.push_back(t);
+                continue;
+            }
+            const std::string name = t.text.substr(1);
+            const Dictionary::Entry* found = findVariable(scopes, name);
+            if (found && found->dict)
+            {
+                // OpenFOAM would paste the dictionary's entries as loose tokens here.
+                syntaxError
                 (
-                    Dictionary(fileName_, dotted(dict.path_, t.text), brace.line)
+                    entryPath, t.line,
+                    "'" + t.text + "' is a sub-dictionary; copy it with `"
+                  + entryPath.substr(entryPath.rfind('.') + 1) + " { " + t.text + "; }`"
                 );
-                parseEntries(*sub, &brace);
-                entry.dict = std::move(sub);
+            }
+            std::vector<DictToken> replacement;
+            if (found)
+            {
+                replacement = found->tokens;
+            }
+            else if (const char* env = std::getenv(name.c_str()); env && *env)
+            {
+                replacement = tokenise(env, "environment variable " + name);
             }
             else
             {
-                entry.tokens = parseValue(dotted(dict.path_, t.text), t.line);
+                syntaxError
+                (
+                    entryPath, t.line,
+                    "undefined variable '" + t.text + "' (no entry '" + name
+                  + "' above it in this dictionary or an enclosing one)"
+                );
             }
-            dict.entries_.push_back(std::move(entry));
+            for (DictToken r : replacement)
+            {
+                r.line = t.line;   // messages point at the use
+                result.push_back(std::move(r));
+            }
         }
+        return result;
     }
 
     //- Tokens up to the ';' outside any brackets; brackets must balance.
@@ -390,6 +707,7 @@ private:
 
     std::vector<DictToken> tokens_;
     std::string fileName_;
+    std::vector<std::string> includeChain_;   // files being read, outermost first
     std::size_t pos_ = 0;
 };
 
@@ -406,24 +724,18 @@ Dictionary::Dictionary(const std::string& fileName, const std::string& path, int
 
 Dictionary Dictionary::readFile(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    std::string text;
+    if (!readText(path, text))
     {
         throw InputError(path, "(file)", "cannot open the file (missing or unreadable)");
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad())
-    {
-        throw InputError(path, "(file)", "error while reading the file");
-    }
-    return parse(text.str(), path);
+    return DictionaryParser(text, path, {fileIdentity(path)}).parseTop();
 }
 
 
 Dictionary Dictionary::parse(const std::string& text, const std::string& fileName)
 {
-    return DictionaryParser(tokenise(text, fileName), fileName).parseTop();
+    return DictionaryParser(text, fileName, {fileIdentity(fileName)}).parseTop();
 }
 
 
@@ -475,7 +787,8 @@ const Dictionary::Entry& Dictionary::entry(const std::string& key) const
 void Dictionary::fail(const std::string& key, const std::string& what) const
 {
     const Entry* e = lookup(key);
-    throw InputError(fileName_, entryPath(key), e ? lineTag(e->line) + what : what);
+    if (!e) throw InputError(fileName_, entryPath(key), what);
+    throw InputError(e->fileName, entryPath(key), lineTag(e->line) + what);
 }
 
 
