@@ -133,7 +133,10 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap",
                  "referenceFlexuralStrength"});
     s.test = t.getChoice("type", RidgeLoadTest::names());
-    s.referenceFlexuralStrength = t.getPositiveScalarOrDefault("referenceFlexuralStrength", 0.0);
+    if (t.found("referenceFlexuralStrength"))
+    {
+        s.referenceFlexuralStrength = t.getPositiveScalarOrDefault("referenceFlexuralStrength", 1.0);
+    }
     s.platenLength = t.getPositiveScalarOrDefault("platenLength", s.platenLength);
     s.platenHeight = t.getPositiveScalarOrDefault("platenHeight", s.platenHeight);
     s.settleTime = t.getScalarOrDefault("settleTime", s.settleTime);

@@ -94,7 +94,7 @@ set_tests_properties(packedBedSmall_ergun PROPERTIES FIXTURES_REQUIRED packedBed
 # settlingBedDEM (the benchmark's DEM-only runs): a level it does not run, and a
 # case without couplingProperties, are refused with the entry named and exit 1.
 add_test(NAME settlingBedDEM_badInput
-  COMMAND sh -c "\"$1\" -hydrodynamics cfd > bad.log 2>&1; a=$?; grep -q \"'-hydrodynamics': must be none or hydrostatic\" bad.log || exit 2; \"$1\" -case /nonexistent -hydrodynamics none > bad.log 2>&1; b=$?; grep -q 'couplingProperties' bad.log && [ $a -eq 1 ] && [ $b -eq 1 ]"
+  COMMAND sh -c "\"$1\" -hydrodynamics cfd > bad.log 2>&1; a=$?; grep -q \"'-hydrodynamics': 'cfd' is not one of: none hydrostatic\" bad.log || exit 2; \"$1\" -case /nonexistent -hydrodynamics none > bad.log 2>&1; b=$?; grep -q 'couplingProperties' bad.log && [ $a -eq 1 ] && [ $b -eq 1 ]"
           sh $<TARGET_FILE:settlingBedDEM>)
 set_tests_properties(settlingBedDEM_badInput PROPERTIES TIMEOUT 60 WORKING_DIRECTORY ${COUPLING_WORK})
 
