@@ -45,26 +45,12 @@ std::string number(double v)
     return s.str();
 }
 
-RidgeTest ridgeTestFromName(const Dictionary& d, const std::string& key)
-{
-    const std::string name = d.getChoice(key, {"flexure", "pullUp", "directShear"});
-    return name == "flexure" ? RidgeTest::flexure
-        : name == "pullUp" ? RidgeTest::pullUp
-        : RidgeTest::directShear;
-}
-
 } // namespace
 
 
 std::string toString(RidgeTest t)
 {
-    switch (t)
-    {
-        case RidgeTest::flexure: return "flexure";
-        case RidgeTest::pullUp: return "pullUp";
-        case RidgeTest::directShear: return "directShear";
-    }
-    return "?";
+    return ridgeTestNames.nameOr(t, "?");
 }
 
 
@@ -167,7 +153,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
 
     const Dictionary& t = d.subDict("test");
     t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap"});
-    s.test = ridgeTestFromName(t, "type");
+    s.test = ridgeTestNames.get(t, "type");
     s.platenLength = t.getPositiveScalarOrDefault("platenLength", s.platenLength);
     s.platenHeight = t.getPositiveScalarOrDefault("platenHeight", s.platenHeight);
     s.settleTime = t.getScalarOrDefault("settleTime", s.settleTime);
