@@ -2,6 +2,7 @@
 
 #include "AppMain.H"
 #include "AtomicFile.H"
+#include "ConfinementLineStrength.H"
 #include "Dictionary.H"
 #include "InputError.H"
 #include "JsonObject.H"
@@ -86,7 +87,7 @@ FreezeBondTensionScene::FreezeBondTensionScene(MPI_Comm comm, const TensionTestS
     area_(M_PI*0.25*settings.specimen.diameter*settings.specimen.diameter),
     curve_({"time_s", "pull_m", "force_N", "stress_Pa", "intact_freeze_bonds"})
 {
-    settings_.submersionTime = specimen_.strengthModel().submersionTime();
+    settings_.submersionTime = specimen_.freezeBondProperties().submersionTime();
 }
 
 
@@ -167,15 +168,17 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
         strengths.push_back(b.strength.tensile);
     }
     const FreezeBondingStatistics& stats = specimen_.freezeStatistics();
-    const FreezeBondStrengthModel& model = specimen_.strengthModel();
+    const FreezeBondProperties& model = specimen_.freezeBondProperties();
+    // fixedSet has no line: 0 for both.
+    const auto* line = dynamic_cast<const ConfinementLineStrength*>(&model.strengthModel());
     JsonObject j;
     j.add("case", "freezeBondTension")
      .add("label", settings_.label)
      .add("confinement_pressure_Pa", settings_.confinementPressure)
      .add("submersion_time_min", settings_.submersionTime)
-     .add("model_slope", model.slope())
-     .add("model_intercept_Pa", model.intercept())
-     .add("area_correction", model.areaCorrection())
+     .add("model_slope", line ? line->slope() : 0.0)
+     .add("model_intercept_Pa", line ? line->intercept() : 0.0)
+     .add("area_correction", model.areaCorrection().value())
      .add("peak_force_N", peakForce_)
      .add("strength_Pa", peakForce_/area_)
      .add("pull_at_peak_m", pullAtPeak_)

@@ -5,6 +5,7 @@
 #include "BondedBody.H"
 #include "Dictionary.H"
 #include "FreezeBonding.H"
+#include "GivenAreaCorrection.H"
 #include "IceBondForces.H"
 #include "InputError.H"
 #include "JsonObject.H"
@@ -188,8 +189,8 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
     MPI_Comm_size(comm_, &ranks_);
     ice_ = IceProperties::read(path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
-    if (strengthModel_.areaCorrectionKind() != FreezeBondStrengthModel::AreaCorrectionKind::given)
+    freezeBondProperties_ = FreezeBondProperties::read(path("constant/freezeBondProperties"));
+    if (!dynamic_cast<const GivenAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
             "a ridge needs `given` (c_f of its keel, see the keel's summary.json); the block shapes "
@@ -487,7 +488,7 @@ void RidgeScene::assemble()
         if (b.family == BondFamily::ice) iceBonds.push_back(b);
     }
     const std::vector<NewFreezeBond> freezeBonds =
-        freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
+        freezeBondsAtContacts(now, ice_, freezeBondProperties_, contact_.normalStiffness);
     const FreezeBondingStatistics freezeStats = freezeBondingStatistics(freezeBonds, now);
     long layerToKeel = 0;
     for (const NewFreezeBond& b : freezeBonds)
@@ -533,7 +534,7 @@ void RidgeScene::assemble()
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
         << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
         << freezeStats.meanTensile * 1e-3 << " kPa, shear " << freezeStats.meanShear * 1e-3
-        << " kPa on the bond area (" << strengthModel_.summary() << "); " << fixedEnds
+        << " kPa on the bond area (" << freezeBondProperties_.summary() << "); " << fixedEnds
         << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
         << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count())
         << "; saved DEM/ridge.h5";
@@ -903,7 +904,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
      .add("keel_thickness_m", g.keelTop - g.keelBottom)
      .add("depth_m", D)
      .add("water_level_m", g.waterLevel)
-     .add("freeze_bond_set", strengthModel_.summary())
+     .add("freeze_bond_set", freezeBondProperties_.summary())
      .add("peak_force_N", peak)
      .add("travel_at_peak_m", travelAtPeak)
      .add("force_at_start_N", startForce)

@@ -10,6 +10,8 @@
 #include "HydrostaticWater.H"
 #include "IceBondForces.H"
 #include "FreezeBonding.H"
+#include "HeatBalanceAreaCorrection.H"
+#include "InterfaceAreaCorrection.H"
 #include "InputError.H"
 #include "JsonObject.H"
 #include "LiggghtsInstance.H"
@@ -151,8 +153,8 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     MPI_Comm_size(comm_, &ranks_);
     ice_ = IceProperties::read(path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(path("constant/freezeBondProperties"));
-    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
+    freezeBondProperties_ = FreezeBondProperties::read(path("constant/freezeBondProperties"));
+    if (dynamic_cast<const InterfaceAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(path("constant/freezeBondProperties"), "areaCorrection.model",
             "interface is for laboratory specimens; rubble needs given or heatBalance");
@@ -501,7 +503,10 @@ void RubbleScene::freezeBond()
         now[k].radius = 0.5*settings_.particleDiameter;
         now[k].block = blockOfTag_[k];
     }
-    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::heatBalance)
+    if
+    (
+        auto* heatBalance = dynamic_cast<HeatBalanceAreaCorrection*>(&freezeBondProperties_.areaCorrection())
+    )
     {
         double volume = 0.0, surface = 0.0;
         for (const BuiltBlock& b : rubble_.blocks)
@@ -511,10 +516,10 @@ void RubbleScene::freezeBond()
         }
         const double bondRadius =
             ice_.family(BondFamily::freeze).radiusMultiplier*0.5*settings_.particleDiameter;
-        strengthModel_.setAreaCorrection(strengthModel_.heatBalanceAreaCorrection(volume, surface, bondRadius));
+        heatBalance->setFromBlocks(volume, surface, bondRadius);
     }
     // The contact forces are those of the contact model the rubble settled with.
-    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, settlingContact_.normalStiffness);
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, freezeBondProperties_, settlingContact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
     bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
 
@@ -538,7 +543,7 @@ void RubbleScene::freezeBond()
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, " << freezeStats_.maxConfinement*1e-3
         << " kPa max; tensile " << freezeStats_.meanTensile*1e-3 << " +- " << freezeStats_.sdTensile*1e-3
         << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- " << freezeStats_.sdShear*1e-3
-        << " kPa on the bond area; " << strengthModel_.summary() << "; " << fixed << " particles fixed at the ends";
+        << " kPa on the bond area; " << freezeBondProperties_.summary() << "; " << fixed << " particles fixed at the ends";
     log(msg.str());
 }
 
@@ -614,7 +619,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
      .add("freeze_bond_shear_sd_Pa", freezeStats_.sdShear)
      .add("confinement_mean_Pa", freezeStats_.meanConfinement)
      .add("confinement_max_Pa", freezeStats_.maxConfinement)
-     .add("area_correction", strengthModel_.areaCorrection())
+     .add("area_correction", freezeBondProperties_.areaCorrection().value())
      .add("ice_bonds", iceBonds)
      .add("particles", long(state.particles.size()))
      .add("bonds", long(state.bonds.size()))
