@@ -57,9 +57,7 @@ FloatingBlockSettings FloatingBlockSettings::read(const std::string& caseDir)
     props.checkKeys({"block"});
     const Dictionary& block = props.subDict("block");
     block.checkKeys({"lattice", "particleRadius", "spheres", "releaseDepth"});
-    s.lattice = block.getChoice("lattice", {"cubic", "hexagonal"}) == "cubic"
-        ? BlockLattice::cubic
-        : BlockLattice::hexagonal;
+    s.lattice = blockLatticeNames.get(block, "lattice");
     s.particleRadius = positive(block, "particleRadius");
     const std::vector<double> n = block.getScalarList("spheres");
     if (n.size() != 3 || std::any_of(n.begin(), n.end(), [](double k) { return k < 1 || k != std::floor(k) || k > 1000; }))

@@ -77,7 +77,7 @@ FreezeBondShearScene::FreezeBondShearScene(MPI_Comm comm, const ShearTestSetting
 {
     if (settings_.shearStrength > 0.0)
     {
-        specimen_.strengthModel().setSetStrengths(settings_.shearStrength, settings_.shearStrength);
+        specimen_.freezeBondProperties().setSetStrengths(settings_.shearStrength, settings_.shearStrength);
     }
     if (settings_.youngsModulus > 0.0)
     {

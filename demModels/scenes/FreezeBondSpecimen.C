@@ -6,6 +6,7 @@
 #include "IceBlocks.H"
 #include "IceBondForces.H"
 #include "FreezeBonding.H"
+#include "InterfaceAreaCorrection.H"
 #include "InputError.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
@@ -51,10 +52,10 @@ FreezeBondSpecimen::FreezeBondSpecimen
 {
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
+    freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
     if (submersionTime > 0.0)
     {
-        strengthModel_.setSubmersionTime(submersionTime);
+        freezeBondProperties_.setSubmersionTime(submersionTime);
     }
 }
 
@@ -230,8 +231,12 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
     {
         now[k].position = positions[k];
     }
-    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
-    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, freezeBondProperties_, contact_.normalStiffness);
+    if
+    (
+        auto* interfaceCorrection =
+            dynamic_cast<InterfaceAreaCorrection*>(&freezeBondProperties_.areaCorrection())
+    )
     {
         // The real frozen area is the specimen's cross-section, shared by the DEM bonds across
         // it: c_f is known once the bonds are, and their strengths follow from it.
@@ -245,10 +250,10 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
         {
             throw RunError("no contacts across the interface to freeze-bond");
         }
-        strengthModel_.setAreaCorrection(interfaceArea/bondAreas);
+        interfaceCorrection->setFromInterface(interfaceArea, bondAreas);
         for (NewFreezeBond& b : freezeBonds_)
         {
-            b.strength = strengthModel_.strength
+            b.strength = freezeBondProperties_.strength
             (
                 b.contactForce, bondArea(family, now[b.pair.i].radius, now[b.pair.j].radius)
             );
@@ -260,7 +265,7 @@ void FreezeBondSpecimen::freezeBond(double interfaceArea)
     msg << "Freeze-bonds: " << freezeStats_.bonds << " across the interface, confinement "
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, tensile strength " << freezeStats_.meanTensile*1e-3
         << " +- " << freezeStats_.sdTensile*1e-3 << " kPa, shear " << freezeStats_.meanShear*1e-3
-        << " kPa on the bond area; " << strengthModel_.summary();
+        << " kPa on the bond area; " << freezeBondProperties_.summary();
     context_.log(msg.str());
 }
 

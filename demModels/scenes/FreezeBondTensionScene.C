@@ -3,6 +3,7 @@
 
 #include "AppMain.H"
 #include "AtomicFile.H"
+#include "ConfinementLineStrength.H"
 #include "Dictionary.H"
 #include "InputError.H"
 #include "Json.H"
@@ -72,7 +73,7 @@ FreezeBondTensionScene::FreezeBondTensionScene(MPI_Comm comm, const TensionTestS
     area_(M_PI*0.25*settings.specimen.diameter*settings.specimen.diameter),
     curve_({"time_s", "pull_m", "force_N", "stress_Pa", "intact_freeze_bonds"})
 {
-    settings_.submersionTime = specimen_.strengthModel().submersionTime();
+    settings_.submersionTime = specimen_.freezeBondProperties().submersionTime();
 }
 
 
@@ -153,15 +154,17 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
         strengths.push_back(b.strength.tensile);
     }
     const FreezeBondingStatistics& stats = specimen_.freezeStatistics();
-    const FreezeBondStrengthModel& model = specimen_.strengthModel();
+    const FreezeBondProperties& model = specimen_.freezeBondProperties();
+    // fixedSet has no line: 0 for both.
+    const auto* line = dynamic_cast<const ConfinementLineStrength*>(&model.strengthModel());
     Json j;
     j["case"] = "freezeBondTension";
     j["label"] = settings_.label;
     j["confinement_pressure_Pa"] = settings_.confinementPressure;
     j["submersion_time_min"] = settings_.submersionTime;
-    j["model_slope"] = model.slope();
-    j["model_intercept_Pa"] = model.intercept();
-    j["area_correction"] = model.areaCorrection();
+    j["model_slope"] = line ? line->slope() : 0.0;
+    j["model_intercept_Pa"] = line ? line->intercept() : 0.0;
+    j["area_correction"] = model.areaCorrection().value();
     j["peak_force_N"] = peakForce_;
     j["strength_Pa"] = peakForce_/area_;
     j["pull_at_peak_m"] = pullAtPeak_;

@@ -7,6 +7,7 @@
 #include "BondedBody.H"
 #include "Dictionary.H"
 #include "FreezeBonding.H"
+#include "GivenAreaCorrection.H"
 #include "IceBondForces.H"
 #include "InputError.H"
 #include "Json.H"
@@ -170,8 +171,8 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
 {
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
-    if (strengthModel_.areaCorrectionKind() != FreezeBondStrengthModel::AreaCorrectionKind::given)
+    freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    if (!dynamic_cast<const GivenAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
             "a ridge needs `given` (c_f of its keel, see the keel's summary.json); the block shapes "
@@ -448,7 +449,7 @@ void RidgeScene::assemble()
         if (b.family == BondFamily::ice) iceBonds.push_back(b);
     }
     const std::vector<NewFreezeBond> freezeBonds =
-        freezeBondsAtContacts(now, ice_, strengthModel_, contact_.normalStiffness);
+        freezeBondsAtContacts(now, ice_, freezeBondProperties_, contact_.normalStiffness);
     const FreezeBondingStatistics freezeStats = freezeBondingStatistics(freezeBonds, now);
     long layerToKeel = 0;
     for (const NewFreezeBond& b : freezeBonds)
@@ -494,7 +495,7 @@ void RidgeScene::assemble()
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
         << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
         << freezeStats.meanTensile * 1e-3 << " kPa, shear " << freezeStats.meanShear * 1e-3
-        << " kPa on the bond area (" << strengthModel_.summary() << "); " << fixedEnds
+        << " kPa on the bond area (" << freezeBondProperties_.summary() << "); " << fixedEnds
         << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
         << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count())
         << "; saved DEM/ridge.h5";
@@ -822,7 +823,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["keel_thickness_m"] = g.keelTop - g.keelBottom;
     j["depth_m"] = g.depth();
     j["water_level_m"] = g.waterLevel;
-    j["freeze_bond_set"] = strengthModel_.summary();
+    j["freeze_bond_set"] = freezeBondProperties_.summary();
     j["peak_force_N"] = peak;
     j["travel_at_peak_m"] = travelAtPeak;
     j["force_at_start_N"] = startForce;

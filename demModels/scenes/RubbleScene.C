@@ -11,6 +11,8 @@
 #include "HydrostaticWater.H"
 #include "IceBondForces.H"
 #include "FreezeBonding.H"
+#include "HeatBalanceAreaCorrection.H"
+#include "InterfaceAreaCorrection.H"
 #include "InputError.H"
 #include "Format.H"
 #include "Json.H"
@@ -137,8 +139,8 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
 {
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
-    strengthModel_ = FreezeBondStrengthModel::read(context_.path("constant/freezeBondProperties"));
-    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::interface)
+    freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    if (dynamic_cast<const InterfaceAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
             "interface is for laboratory specimens; rubble needs given or heatBalance");
@@ -466,7 +468,10 @@ void RubbleScene::freezeBond()
         now[k].radius = 0.5*settings_.particleDiameter;
         now[k].block = blockOfTag_[k];
     }
-    if (strengthModel_.areaCorrectionKind() == FreezeBondStrengthModel::AreaCorrectionKind::heatBalance)
+    if
+    (
+        auto* heatBalance = dynamic_cast<HeatBalanceAreaCorrection*>(&freezeBondProperties_.areaCorrection())
+    )
     {
         double volume = 0.0, surface = 0.0;
         for (const BuiltBlock& b : rubble_.blocks)
@@ -476,10 +481,10 @@ void RubbleScene::freezeBond()
         }
         const double bondRadius =
             ice_.family(BondFamily::freeze).radiusMultiplier*0.5*settings_.particleDiameter;
-        strengthModel_.setAreaCorrection(strengthModel_.heatBalanceAreaCorrection(volume, surface, bondRadius));
+        heatBalance->setFromBlocks(volume, surface, bondRadius);
     }
     // The contact forces are those of the contact model the rubble settled with.
-    freezeBonds_ = freezeBondsAtContacts(now, ice_, strengthModel_, settlingContact_.normalStiffness);
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, freezeBondProperties_, settlingContact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
     bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
 
@@ -503,7 +508,7 @@ void RubbleScene::freezeBond()
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, " << freezeStats_.maxConfinement*1e-3
         << " kPa max; tensile " << freezeStats_.meanTensile*1e-3 << " +- " << freezeStats_.sdTensile*1e-3
         << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- " << freezeStats_.sdShear*1e-3
-        << " kPa on the bond area; " << strengthModel_.summary() << "; " << fixed << " particles fixed at the ends";
+        << " kPa on the bond area; " << freezeBondProperties_.summary() << "; " << fixed << " particles fixed at the ends";
     context_.log(msg.str());
 }
 
@@ -579,7 +584,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["freeze_bond_shear_sd_Pa"] = freezeStats_.sdShear;
     j["confinement_mean_Pa"] = freezeStats_.meanConfinement;
     j["confinement_max_Pa"] = freezeStats_.maxConfinement;
-    j["area_correction"] = strengthModel_.areaCorrection();
+    j["area_correction"] = freezeBondProperties_.areaCorrection().value();
     j["ice_bonds"] = iceBonds;
     j["particles"] = long(state.particles.size());
     j["bonds"] = long(state.bonds.size());

@@ -1,6 +1,8 @@
 #include "Dictionary.H"
-#include "FreezeBondStrength.H"
+#include "ConfinementLineStrength.H"
+#include "FreezeBondProperties.H"
 #include "FreezeBonding.H"
+#include "HeatBalanceAreaCorrection.H"
 #include "InputError.H"
 
 #include <gtest/gtest.h>
@@ -12,9 +14,9 @@ using namespace iceDEM;
 namespace
 {
 
-FreezeBondStrengthModel modelFrom(const std::string& text)
+FreezeBondProperties modelFrom(const std::string& text)
 {
-    return FreezeBondStrengthModel::fromDictionary(Dictionary::parse(text, "freezeBondProperties"));
+    return FreezeBondProperties::fromDictionary(Dictionary::parse(text, "freezeBondProperties"));
 }
 
 const std::string lineTable = R"(
@@ -34,12 +36,12 @@ const std::string lineTable = R"(
 TEST(AreaCorrection, ReferenceHeatBalanceGives0p207)
 {
     // physics.md section 5: 2.108 kJ/kgK x 18 K / 334 J/g = 11.4 % new ice.
-    const double fraction = AreaCorrection::newIceFraction(2108.0, 18.0, 334e3);
+    const double fraction = HeatBalanceAreaCorrection::newIceFraction(2108.0, 18.0, 334e3);
     EXPECT_NEAR(fraction, 0.1136, 5e-4);
     // A block with V/S = 2.82 cm grows 0.32 cm of ice per face.
-    EXPECT_NEAR(AreaCorrection::iceGrowth(fraction, 0.0282, 1.0), 0.0032, 2e-5);
+    EXPECT_NEAR(HeatBalanceAreaCorrection::iceGrowth(fraction, 0.0282, 1.0), 0.0032, 2e-5);
     // A 3.94 cm band along a 5 cm contact against four 55 mm sphere bonds: 19.7 / 95.04 cm2.
-    EXPECT_NEAR(AreaCorrection::fromBand(0.0394, 0.05, 4, 0.0275), 0.207, 5e-4);
+    EXPECT_NEAR(HeatBalanceAreaCorrection::fromBand(0.0394, 0.05, 4, 0.0275), 0.207, 5e-4);
 }
 
 
@@ -64,8 +66,9 @@ TEST(FreezeBondStrength, TimeInterpolatedInLogTime)
 {
     // Halfway in log time between 30 and 180 min: sqrt(30 * 180) = 73.5 min.
     const auto m = modelFrom("submersionTime 73.48469228349535;" + lineTable + "areaCorrection { model given; value 1; }");
-    EXPECT_NEAR(m.intercept(), 29e3, 1e-6);
-    EXPECT_NEAR(m.shearToTensileRatio(), 0.75, 1e-12);
+    const auto& line = dynamic_cast<const ConfinementLineStrength&>(m.strengthModel());
+    EXPECT_NEAR(line.intercept(), 29e3, 1e-6);
+    EXPECT_NEAR(line.shearToTensileRatio(), 0.75, 1e-12);
     // The peak after a few minutes is the strongest (physics.md section 5).
     const auto early = modelFrom("submersionTime 5;" + lineTable + "areaCorrection { model given; value 1; }");
     EXPECT_GT(early.tensileAt(25e3), m.tensileAt(25e3));

@@ -1,5 +1,6 @@
 #include "SchillerNaumann.H"
 #include "addToRunTimeSelectionTable.H"
+#include "SchillerNaumannCorrelation.H"
 
 namespace Foam
 {
@@ -12,7 +13,7 @@ addToRunTimeSelectionTable(dragModel, SchillerNaumann, dictionary);
 
 scalar SchillerNaumann::CdRe(scalar Re)
 {
-    return max(0.44*Re, 24.0*(1.0 + 0.15*pow(Re, 0.687)));
+    return iceDEM::schillerNaumannDragCoefficientTimesRe(Re);
 }
 
 

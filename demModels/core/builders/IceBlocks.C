@@ -95,15 +95,19 @@ BlockSize BlockSizeSource::draw(std::mt19937_64& rng) const
 
 BlockShape blockShapeFromName(const std::string& n, const std::string& file, const std::string& entry)
 {
-    if (n == "cuboid") return BlockShape::cuboid;
-    if (n == "empirical") return BlockShape::empirical;
-    throw InputError(file, entry, "unknown block shape '" + n + "'; allowed: cuboid empirical");
+    if (!blockShapeNames.found(n))
+    {
+        std::string allowed;
+        for (const std::string& a : blockShapeNames.names()) allowed += " " + a;
+        throw InputError(file, entry, "unknown block shape '" + n + "'; allowed:" + allowed);
+    }
+    return blockShapeNames.value(n);
 }
 
 
 std::string name(BlockShape s)
 {
-    return s == BlockShape::cuboid ? "cuboid" : "empirical";
+    return blockShapeNames.name(s);
 }
 
 

@@ -23,7 +23,7 @@ std::vector<NewFreezeBond> freezeBondsAtContacts
 (
     const std::vector<ParticleSpec>& particles,
     const IceProperties& ice,
-    const FreezeBondStrengthModel& strengthModel,
+    const FreezeBondProperties& freezeBondProperties,
     double contactNormalStiffness
 )
 {
@@ -58,7 +58,7 @@ std::vector<NewFreezeBond> freezeBondsAtContacts
         NewFreezeBond bond;
         bond.pair = {std::min(a, b), std::max(a, b), BondFamily::freeze, distance};
         bond.contactForce = contactNormalStiffness*std::max(0.0, touch - distance);
-        bond.strength = strengthModel.strength(bond.contactForce, bondArea(family, pa.radius, pb.radius));
+        bond.strength = freezeBondProperties.strength(bond.contactForce, bondArea(family, pa.radius, pb.radius));
         bonds.push_back(bond);
     });
     std::sort(bonds.begin(), bonds.end(), [](const NewFreezeBond& x, const NewFreezeBond& y)

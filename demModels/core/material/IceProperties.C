@@ -96,12 +96,7 @@ BondFamilyParameters readFamily(const Dictionary& d)
     f.poissonsRatio = readScalar(d, "poissonsRatio", halfOpen(0, 0.5));
     f.radiusMultiplier = readScalar(d, "radiusMultiplier", positive());
 
-    const std::string strengthModel =
-        d.getChoice("strengthModel", {"strain", "stress", "freezeBondProperties"});
-    f.strengthModel =
-        strengthModel == "stress" ? StrengthModel::stress
-      : strengthModel == "strain" ? StrengthModel::strain
-      : StrengthModel::perBond;
+    f.strengthModel = strengthModelNames.get(d, "strengthModel");
 
     // Only the chosen model's entries are required; the other model's are
     // checked when given, so that switching models is a one-word edit.
@@ -118,10 +113,7 @@ BondFamilyParameters readFamily(const Dictionary& d)
 
     f.twistStrengthFactor = readScalarOrDefault(d, "twistStrengthFactor", positive(), 1.0);
     f.bendingStrengthFactor = readScalarOrDefault(d, "bendingStrengthFactor", positive(), 1.0);
-    f.criterion =
-        d.getChoiceOrDefault("breakageCriterion", {"separate", "combined"}, "separate") == "combined"
-      ? BreakageCriterion::combined
-      : BreakageCriterion::separate;
+    f.criterion = breakageCriterionNames.getOrDefault(d, "breakageCriterion", BreakageCriterion::separate);
     f.unbreakable = d.getBoolOrDefault("unbreakable", false);
     return f;
 }
@@ -132,11 +124,7 @@ DampingParameters readDamping(const Dictionary& d)
     d.checkKeys({"model", "hystereticCoeffs", "viscousCoeffs"});
 
     DampingParameters p;
-    const std::string model = d.getChoice("model", {"none", "hysteretic", "viscous"});
-    p.model =
-        model == "none" ? DampingModel::none
-      : model == "hysteretic" ? DampingModel::hysteretic
-      : DampingModel::viscous;
+    p.model = dampingModelNames.get(d, "model");
 
     // The coefficients of the chosen model are required, the others checked when given.
     if (p.model == DampingModel::hysteretic || d.found("hystereticCoeffs"))
@@ -182,7 +170,7 @@ IceProperties IceProperties::read(const std::string& path)
     props.material = readMaterial(dict.subDict("material"));
 
     const Dictionary& families = dict.subDict("bondFamilies");
-    families.checkKeys({toString(BondFamily::ice), toString(BondFamily::freeze)});
+    families.checkKeys(bondFamilyNames.names());
     const BondFamilyParameters ice = readFamily(families.subDict(toString(BondFamily::ice)));
     props.families[static_cast<int>(BondFamily::ice)] = ice;
     props.families[static_cast<int>(BondFamily::freeze)] =

@@ -14,16 +14,6 @@ double submergedSphereVolume(double radius, double depth)
 }
 
 
-double schillerNaumannDragCoefficient(double reynolds)
-{
-    if (!(reynolds > 0.0))
-    {
-        throw std::invalid_argument("Schiller-Naumann drag needs a positive Reynolds number");
-    }
-    return std::max(0.44, 24.0 / reynolds * (1.0 + 0.15 * std::pow(reynolds, 0.687)));
-}
-
-
 HydrostaticWater::HydrostaticWater(const HydrostaticWaterParameters& p)
 :
     p_(p)

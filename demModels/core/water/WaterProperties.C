@@ -12,13 +12,7 @@ namespace iceDEM
 
 std::string toString(WaterLevel level)
 {
-    switch (level)
-    {
-        case WaterLevel::none: return "none";
-        case WaterLevel::hydrostatic: return "hydrostatic";
-        case WaterLevel::cfd: return "cfd";
-    }
-    return "?";
+    return waterLevelNames.nameOr(level, "?");
 }
 
 
@@ -65,7 +59,9 @@ HydrostaticWaterParameters readHydrostatic(const Dictionary& d)
         s << p.addedMassCoefficient << " is not allowed; expected a number >= 0 (0.5 for a sphere, 0: off)";
         d.fail("addedMassCoefficient", s.str());
     }
-    p.drag = d.getChoiceOrDefault("drag", {"SchillerNaumann", "none"}, "SchillerNaumann") == "SchillerNaumann";
+    p.drag =
+        hydrostaticDragNames.getOrDefault(d, "drag", HydrostaticDrag::SchillerNaumann)
+     == HydrostaticDrag::SchillerNaumann;
     return p;
 }
 
@@ -98,10 +94,7 @@ WaterProperties WaterProperties::read
 {
     const Dictionary dict = Dictionary::readFile(couplingFile);
     WaterProperties w;
-    const std::string level = dict.getChoice("waterLevel", {"none", "hydrostatic", "cfd"});
-    w.level = level == "none" ? WaterLevel::none
-        : level == "hydrostatic" ? WaterLevel::hydrostatic
-        : WaterLevel::cfd;
+    w.level = waterLevelNames.get(dict, "waterLevel");
 
     if (w.level == WaterLevel::hydrostatic || dict.found("hydrostatic"))
     {
