@@ -110,9 +110,7 @@ BondedIce::BondedIce
     checkTimeStep(minRadius);
     defineContacts(diameterSum/specs.size(), minMass, maxRadius);
 
-    bonds_ = std::make_unique<iceDEM::IceBondForces>(lmp_, ice_);
-    lmp_.command(std::string("fix ") + bondFixId + " all external pf/callback 1 1");
-    bonds_->attach(bondFixId);
+    bonds_ = iceDEM::IceBondForces::define(lmp_, ice_, bondFixId);
     const FpeTrapsOff untrapped;
     lmp_.command("run 0");   // LIGGGHTS' first set-up resets property/atom values
     bonds_->createBonds(specs, pairs);

@@ -506,6 +506,20 @@ void IceBondForces::suspendBreakage(bool suspended)
 }
 
 
+std::unique_ptr<IceBondForces> IceBondForces::define
+(
+    LiggghtsInstance& lmp,
+    const IceProperties& ice,
+    const std::string& fixExternalId
+)
+{
+    auto bonds = std::make_unique<IceBondForces>(lmp, ice);
+    lmp.command("fix " + fixExternalId + " all external pf/callback 1 1");
+    bonds->attach(fixExternalId);
+    return bonds;
+}
+
+
 void IceBondForces::attach(const std::string& fixExternalId)
 {
     auto& fix = static_cast<LAMMPS_NS::FixExternal&>(lmp_.fix(fixExternalId));

@@ -66,9 +66,7 @@ std::unique_ptr<IceBondForces> attachIceBonds
     const Checkpoint* resume
 )
 {
-    auto bonds = std::make_unique<IceBondForces>(lmp, ice);
-    lmp.command("fix iceBondForces all external pf/callback 1 1");
-    bonds->attach("iceBondForces");
+    auto bonds = IceBondForces::define(lmp, ice);
     // LIGGGHTS' set-up of the first run resets property/atom values to their
     // defaults, so the bonds are stored after it.
     lmp.command("run 0");

@@ -250,9 +250,7 @@ void FloatingBlockScene::startLiggghts()
     // Water first, bonds (with hysteretic damping of the total) next, added mass last.
     waterForces_ = std::make_unique<WaterForces>(lmp, HydrostaticWater(water_.hydrostatic));
     waterForces_->defineForceFix();
-    bonds_ = std::make_unique<IceBondForces>(lmp, ice_);
-    lmp.command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
+    bonds_ = IceBondForces::define(lmp, ice_);
     waterForces_->defineAddedMassFix();
     lmp.command("run 0");   // LIGGGHTS' first set-up resets property/atom values
     bonds_->createBonds(particles_, bondPairs_);

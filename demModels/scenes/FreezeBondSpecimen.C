@@ -157,9 +157,7 @@ void FreezeBondSpecimen::start(const std::string& script, const ScriptVariables&
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
     variables.insert(variables.end(), extra.begin(), extra.end());
     lmp_ = context_.startLiggghts(variables, "DEM/" + script);
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
-    lmp_->command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
+    bonds_ = IceBondForces::define(*lmp_, ice_);
     lmp_->command("run 0");     // property/atom is reset by the first run's set-up
     bonds_->createBonds(particles_, iceBonds_);
     lmp_->command("run 0");

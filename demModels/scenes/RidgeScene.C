@@ -392,9 +392,7 @@ void RidgeScene::assemble()
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, soft);
-    lmp_->command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
+    bonds_ = IceBondForces::define(*lmp_, soft);
     waterForces_->defineAddedMassFix();
     lmp_->command("run 0");
     std::vector<ParticleSpec> keelOnly(layout.particles.begin(), layout.particles.begin() + layout.keelParticles);
@@ -704,9 +702,7 @@ void RidgeScene::load()
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
         waterForces_->defineForceFix();
     }
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice_);
-    lmp_->command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
+    bonds_ = IceBondForces::define(*lmp_, ice_);
     if (test_->integratesParticles() && waterForces_)
     {
         // Not in the keel-bond tests: nothing is integrated there, and the fix

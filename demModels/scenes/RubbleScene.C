@@ -274,9 +274,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(water_.hydrostatic));
         waterForces_->defineForceFix();
     }
-    bonds_ = std::make_unique<IceBondForces>(*lmp_, ice);
-    lmp_->command("fix iceBondForces all external pf/callback 1 1");
-    bonds_->attach("iceBondForces");
+    bonds_ = IceBondForces::define(*lmp_, ice);
     if (waterForces_)
     {
         waterForces_->defineAddedMassFix();
