@@ -5,7 +5,7 @@ attribute by attribute (HDF5 files differ in bytes between runs: object timestam
 that name the checkout's path are reported apart, as they differ whenever the folders do.
 
 Usage: tests/compareOutputs.py BEFORE/build/tests AFTER/build/tests
-Exit status 0 when every file both hold is equal, 1 otherwise.
+Exit status 0 when every file of BEFORE is in AFTER and equal, 1 otherwise.
 """
 import os
 import sys
@@ -58,21 +58,24 @@ def main():
         sys.exit(__doc__)
     before, after = sys.argv[1:]
     roots = [os.path.dirname(os.path.dirname(os.path.abspath(p))) for p in (before, after)]
-    counts = {"identical": 0, "equal but for the checkout path": 0, "DIFFERENT": 0, "only in one": 0}
+    counts = {"identical": 0, "equal but for the checkout path": 0, "DIFFERENT": 0, "MISSING after": 0,
+              "new after": 0}
     for rel in sorted(set(files(before)) | set(files(after))):
         a, b = os.path.join(before, rel), os.path.join(after, rel)
-        if not (os.path.exists(a) and os.path.exists(b)):
-            verdict = "only in one"
+        if not os.path.exists(b):
+            verdict = "MISSING after"
+        elif not os.path.exists(a):
+            verdict = "new after"
         elif rel.endswith(".csv"):
             verdict = "identical" if open(a, "rb").read() == open(b, "rb").read() else "DIFFERENT"
         else:
             differing, path_only = differing_entries(a, b, roots)
             verdict = "DIFFERENT" if differing else "equal but for the checkout path" if path_only else "identical"
         counts[verdict] += 1
-        if verdict in ("DIFFERENT", "only in one"):
+        if verdict in ("DIFFERENT", "MISSING after"):
             print(f"{verdict}: {rel}")
     print(", ".join(f"{n} {k}" for k, n in counts.items()))
-    sys.exit(1 if counts["DIFFERENT"] or counts["only in one"] else 0)
+    sys.exit(1 if counts["DIFFERENT"] or counts["MISSING after"] else 0)
 
 
 if __name__ == "__main__":

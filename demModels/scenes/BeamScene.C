@@ -272,7 +272,7 @@ void BeamScene::run()
     buildParticles();
     loading_ = std::make_unique<PlatenLoading>
     (
-        context_.comm(), options_.caseDir, "iceBeamDEM", settings_.loading, body_.dt,
+        context_, settings_.loading, body_.dt,
         static_cast<long>(body_.particles.size()), fixedType
     );
     std::unique_ptr<Checkpoint> resume;

@@ -115,9 +115,7 @@ std::string PlatenLoadingControl::travelFormula(long startStep, double dt) const
 
 PlatenLoading::PlatenLoading
 (
-    MPI_Comm comm,
-    const std::string& caseDir,
-    const std::string& application,
+    const SceneContext& context,
     const PlatenLoadingControl& control,
     double dt,
     long particleCount,
@@ -125,7 +123,7 @@ PlatenLoading::PlatenLoading
     const std::vector<std::string>& extraColumns
 )
 :
-    context_(comm, caseDir, application),
+    context_(context),
     control_(control),
     particleCount_(particleCount),
     fixedType_(fixedType),

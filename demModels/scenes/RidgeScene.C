@@ -667,7 +667,7 @@ void RidgeScene::load()
     }
     loading_ = std::make_unique<PlatenLoading>
     (
-        context_.comm(), settings_.caseDir, externalWater_ ? "icePunchFoam" : "ridgeDEM", settings_.loading, dt_,
+        context_, settings_.loading, dt_,
         particleCount_, fixedType, waterColumnNames
     );
     std::unique_ptr<Checkpoint> checkpoint;

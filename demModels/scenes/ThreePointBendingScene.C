@@ -404,7 +404,7 @@ void ThreePointBendingScene::run()
     buildParticles();
     loading_ = std::make_unique<PlatenLoading>
     (
-        context_.comm(), options_.caseDir, application, settings_.loading, body_.dt,
+        context_, settings_.loading, body_.dt,
         static_cast<long>(body_.particles.size()), fixedType,
         std::vector<std::string>{"midspanDeflection", "supportReaction"}
     );
