@@ -12,8 +12,9 @@ namespace iceDEM
 namespace
 {
 
-constexpr std::uint64_t magic = 0x69636544454d3032ULL;   // "iceDEM02"
+constexpr std::uint64_t magic = 0x69636544454d3033ULL;   // "iceDEM03"
 constexpr std::uint64_t magicOfVersion1 = 0x69636544454d3031ULL;   // LoadingState without liggghtsStepAtStart
+constexpr std::uint64_t magicOfVersion2 = 0x69636544454d3032ULL;   // without the inputs' provenance
 
 class Writer
 {
@@ -68,7 +69,7 @@ public:
 
     std::string getString()
     {
-        std::string s(get<std::uint64_t>(), '\0');
+        std::string s(getCount(1ULL << 28), '\0');
         in_.read(s.data(), static_cast<std::streamsize>(s.size()));
         return s;
     }
@@ -128,6 +129,7 @@ void Checkpoint::write(const std::string& path) const
         Writer w(out);
         w.put(magic);
         w.put(state);
+        w.put(provenance);
         w.put(static_cast<std::uint64_t>(curveColumns.size()));
         for (const std::string& c : curveColumns) w.put(c);
         w.put(static_cast<std::uint64_t>(curveRows.size()));
@@ -168,7 +170,7 @@ Checkpoint Checkpoint::read(const std::string& path)
     }
     Reader r(in, path);
     const auto start = r.get<std::uint64_t>();
-    if (start == magicOfVersion1)
+    if (start == magicOfVersion1 || start == magicOfVersion2)
     {
         throw std::runtime_error(path + ": written by an older version of the program; delete the "
             "checkpoint folder and start again");
@@ -180,6 +182,7 @@ Checkpoint Checkpoint::read(const std::string& path)
     constexpr std::uint64_t limit = 1ULL << 32;
     Checkpoint c;
     c.state = r.get<LoadingState>();
+    c.provenance = r.getString();
     for (auto n = r.getCount(1000); n > 0; --n) c.curveColumns.push_back(r.getString());
     for (auto n = r.getCount(limit); n > 0; --n)
     {

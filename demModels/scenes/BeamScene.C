@@ -265,6 +265,20 @@ long BeamScene::freezeEjecta()
 }
 
 
+Provenance BeamScene::inputs() const
+{
+    Provenance p;
+    p.add("application", "iceBeamDEM");
+    p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
+    p.addDictionaryFile("constant/beamProperties", context_.path("constant/beamProperties"), {"fieldReference"});
+    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval"});
+    p.addFileContent("DEM/in.levelIceBeam", context_.path("DEM/in.levelIceBeam"));
+    p.add("command line -particles", options_.particles > 0 ? std::to_string(options_.particles) : "not given");
+    p.add("command line -platenSpeed", options_.platenSpeed > 0.0 ? shortestNumber(options_.platenSpeed) : "not given");
+    return p;
+}
+
+
 void BeamScene::run()
 {
     context_.log("iceBeamDEM: side-loaded level-ice beam, case " + options_.caseDir + ", "
@@ -275,6 +289,7 @@ void BeamScene::run()
         context_, settings_.loading, body_.dt,
         static_cast<long>(body_.particles.size()), fixedType
     );
+    loading_->setInputs(inputs());
     std::unique_ptr<Checkpoint> resume;
     if (options_.resume)
     {
@@ -396,6 +411,7 @@ void BeamScene::writeSummary(double wallSeconds) const
     j["steps"] = steps;
     j["dt"] = body_.dt;
     j["ranks"] = context_.ranks();
+    j["inputs_fingerprint"] = loading_->inputs().fingerprint();
     j["wall_s"] = wallSeconds;
     j["loop_wall_s"] = loopSeconds;
     j["particle_steps_per_s"] = loopSteps * body_.particles.size() / loopSeconds;

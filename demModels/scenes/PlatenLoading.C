@@ -152,7 +152,10 @@ bool PlatenLoading::checkpointExists() const
 
 Checkpoint PlatenLoading::readCheckpoint() const
 {
-    Checkpoint c = Checkpoint::read(context_.path("DEM/checkpoint/" + context_.application() + ".checkpoint"));
+    const std::string file = context_.path("DEM/checkpoint/" + context_.application() + ".checkpoint");
+    Checkpoint c = Checkpoint::read(file);
+    requireSameInputs(Provenance::fromText(c.provenance), inputs_, file,
+        "the same command without -resume (the run starts again)");
     if (c.state.dt != state_.dt)
     {
         throw InputError(context_.path("constant/iceProperties"), "timeStep",
@@ -490,6 +493,7 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
     {
         Checkpoint c;
         c.state = state_;
+        c.provenance = inputs_.text();
         c.curveColumns = curve_.columns();
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));
         c.breaks = breakage_.events();

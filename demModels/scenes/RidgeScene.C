@@ -151,6 +151,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
                "consolidatedLayer.thickness must be positive");
     }
 
+    s.controlFile = controlFile;
     const Dictionary control = Dictionary::readFile(s.caseDir + "/" + controlFile);
     control.checkKeys
     ({
@@ -476,6 +477,7 @@ void RidgeScene::assemble()
     }
     ridge.time = 0.0;
     ridge.waterLevel = waterParameters.surfaceLevel;
+    ridge.provenance = assemblyInputs().text();
     ridge.description = "ridge assembled by ridgeDEM from " + settings_.keelFile + ": keel trimmed by "
         + formatNumber(settings_.trimDepth) + " m, consolidated layer " + formatNumber(settings_.layer.thickness)
         + " m (block " + std::to_string(layout.clBlock) + "), pressed " + formatNumber(settings_.pressDepth) + " m";
@@ -619,6 +621,53 @@ void RidgeScene::advance(long steps)
 }
 
 
+Provenance RidgeScene::assemblyInputs(const Provenance& made) const
+{
+    Provenance p;
+    p.add("stage", "ridgeDEM assemble");
+    const std::string keel = "keel (settledRubble)";
+    if (std::filesystem::exists(settings_.keelFile) || made.empty())
+    {
+        p.addFileContent(keel, settings_.keelFile);
+    }
+    else
+    {
+        context_.log("Note: the keel " + settings_.keelFile + " is gone; DEM/ridge.h5's other inputs are checked");
+        p.add(keel, made.value(keel));
+    }
+    p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
+    p.addDictionaryFile("constant/freezeBondProperties", context_.path("constant/freezeBondProperties"));
+    p.addDictionaryFile("constant/ridgeProperties", context_.path("constant/ridgeProperties"), {"test"});
+    const Dictionary coupling = Dictionary::readFile(context_.path("constant/couplingProperties"));
+    if (coupling.isDict("hydrostatic"))
+    {
+        // The assembly is in still water at every level.
+        p.addDictionary("constant/couplingProperties", coupling.subDict("hydrostatic"));
+    }
+    if (std::filesystem::exists(context_.path("constant/g")))
+    {
+        p.addDictionaryFile("constant/g", context_.path("constant/g"));
+    }
+    p.addFileContent("DEM/in.ridge", context_.path("DEM/in.ridge"));
+    return p;
+}
+
+
+Provenance RidgeScene::loadingInputs(const Provenance& ridge) const
+{
+    Provenance p;
+    p.add("stage", context_.application() + " load");
+    p.addStage("DEM/ridge.h5", ridge);
+    const Dictionary ridgeProperties = Dictionary::readFile(context_.path("constant/ridgeProperties"));
+    p.addDictionary("constant/ridgeProperties", ridgeProperties.subDict("test"),
+                    {"referenceFlexuralStrength"});
+    p.addDictionaryFile("constant/couplingProperties", context_.path("constant/couplingProperties"));
+    p.addDictionaryFile(settings_.controlFile, context_.path(settings_.controlFile),
+                        {"writeInterval", "checkpointInterval"});
+    return p;
+}
+
+
 void RidgeScene::load()
 {
     const auto wallStart = std::chrono::steady_clock::now();
@@ -627,6 +676,9 @@ void RidgeScene::load()
         throw InputError(context_.path("DEM/ridge.h5"), "(file)", "missing: run the assemble stage first (-stage assemble)");
     }
     const SavedRubble ridge = SavedRubble::read(context_.path("DEM/ridge.h5"));
+    const Provenance ridgeInputs = Provenance::fromText(ridge.provenance);
+    requireSameInputs(ridgeInputs, assemblyInputs(ridgeInputs), context_.path("DEM/ridge.h5"),
+        "ridgeDEM -case " + settings_.caseDir + " -stage assemble");
     int maxBlock = -1;
     for (const SavedParticle& p : ridge.particles) maxBlock = std::max(maxBlock, p.block);
     const int layerBlock = settings_.layer.thickness > 0.0 ? maxBlock : -1;
@@ -670,6 +722,7 @@ void RidgeScene::load()
         context_, settings_.loading, dt_,
         particleCount_, fixedType, waterColumnNames
     );
+    loading_->setInputs(loadingInputs(ridgeInputs));
     std::unique_ptr<Checkpoint> checkpoint;
     if (settings_.resume && loading_->checkpointExists())
     {
@@ -839,6 +892,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["steps"] = loading_->state().steps;
     j["dt"] = dt_;
     j["ranks"] = context_.ranks();
+    j["inputs_fingerprint"] = loading_->inputs().fingerprint();
     j["wall_s"] = wallSeconds;
     j["loop_wall_s"] = loading_->loopSeconds();
     j["particle_steps_per_s"] = loading_->loopSeconds() > 0.0

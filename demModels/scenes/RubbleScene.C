@@ -302,6 +302,37 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
 }
 
 
+Provenance RubbleScene::settlingInputs() const
+{
+    Provenance p;
+    p.add("stage", "rubbleDEM settle");
+    p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
+    // ends: the bonding stage's; blocks.shape as resolved with -shape below
+    p.addDictionaryFile("constant/rubbleProperties", context_.path("constant/rubbleProperties"), {"ends"});
+    p.add("block shape (with -shape)", name(settings_.shape));
+    const Dictionary coupling = Dictionary::readFile(context_.path("constant/couplingProperties"));
+    p.addDictionary("constant/couplingProperties", coupling);
+    if (std::filesystem::exists(context_.path("constant/g")))
+    {
+        p.addDictionaryFile("constant/g", context_.path("constant/g"));
+    }
+    p.addFileContent("DEM/in.rubbleBeam", context_.path("DEM/in.rubbleBeam"));
+    return p;
+}
+
+
+Provenance RubbleScene::bondingInputs() const
+{
+    Provenance p;
+    p.add("stage", "rubbleDEM bond");
+    p.addStage("DEM/settled.h5", settlingInputs());
+    p.addDictionaryFile("constant/freezeBondProperties", context_.path("constant/freezeBondProperties"));
+    const Dictionary rubble = Dictionary::readFile(context_.path("constant/rubbleProperties"));
+    p.addDictionary("constant/rubbleProperties", rubble.subDict("ends"));
+    return p;
+}
+
+
 SavedRubble RubbleScene::gatherState(double time) const
 {
     const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
@@ -382,6 +413,8 @@ void RubbleScene::settle()
     if (settings_.resume && std::filesystem::exists(checkpoint))
     {
         const SavedRubble saved = SavedRubble::read(checkpoint);
+        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), checkpoint,
+            "rubbleDEM -case " + settings_.caseDir + " -stage settle (without -resume)");
         t = saved.time;
         context_.log("Resuming the settling from " + checkpoint + " at t = " + formatNumber(t) + " s");
         startLiggghts(&saved, true);
@@ -431,7 +464,8 @@ void RubbleScene::settle()
         }
         if (t >= nextCheckpoint)
         {
-            const SavedRubble state = gatherState(t);
+            SavedRubble state = gatherState(t);
+            state.provenance = settlingInputs().text();
             if (context_.rank() == 0) state.write(checkpoint);
             nextCheckpoint = t + settings_.checkpointInterval;
         }
@@ -448,7 +482,8 @@ void RubbleScene::settle()
         << " m, porosity " << layer_.porosity << " (spheres: " << layer_.spherePorosity << "), "
         << 100*layer_.volumeAboveWater << " % of the ice above water, freeboard " << layer_.freeboard << " m";
     context_.log(msg.str());
-    const SavedRubble state = gatherState(t);
+    SavedRubble state = gatherState(t);
+    state.provenance = settlingInputs().text();
     if (context_.rank() == 0)
     {
         state.write(context_.path("DEM/settled.h5"));
@@ -513,7 +548,8 @@ void RubbleScene::freezeBond()
 
 void RubbleScene::writeSummary(double wallSeconds) const
 {
-    const SavedRubble state = gatherState(layer_.time);
+    SavedRubble state = gatherState(layer_.time);
+    state.provenance = bondingInputs().text();
     if (context_.rank() != 0)
     {
         return;
@@ -590,6 +626,8 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["dt"] = dt_;
     j["ranks"] = long(context_.ranks());
     j["settling_wall_s"] = settleWall_;
+    j["settled_inputs_fingerprint"] = settlingInputs().fingerprint();
+    j["inputs_fingerprint"] = bondingInputs().fingerprint();
     j["wall_s"] = wallSeconds;
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
@@ -609,6 +647,8 @@ void RubbleScene::run()
             throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
         }
         const SavedRubble saved = SavedRubble::read(settled);
+        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), settled,
+            "rubbleDEM -case " + settings_.caseDir + " -stage settle");
         startLiggghts(&saved, true);
         layer_ = measureLayer(saved.time, totalKineticEnergy(*lmp_)/double(blockOfTag_.size()), true);
     }

@@ -393,6 +393,21 @@ long ThreePointBendingScene::stopEjecta()
 }
 
 
+Provenance ThreePointBendingScene::inputs() const
+{
+    Provenance p;
+    p.add("application", application);
+    p.addDictionaryFile(icePropertiesFile_, context_.path(icePropertiesFile_));
+    p.addDictionaryFile("constant/bendingProperties", context_.path("constant/bendingProperties"), {"targetStrength"});
+    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval"});
+    p.addFileContent("DEM/in.threePointBending", context_.path("DEM/in.threePointBending"));
+    p.add("command line -thickness", options_.thickness > 0.0 ? shortestNumber(options_.thickness) : "not given");
+    p.add("command line -platenSpeed", options_.platenSpeed > 0.0 ? shortestNumber(options_.platenSpeed) : "not given");
+    p.add("command line -quick", options_.quick ? "yes" : "no");
+    return p;
+}
+
+
 void ThreePointBendingScene::run()
 {
     std::ostringstream intro;
@@ -408,6 +423,7 @@ void ThreePointBendingScene::run()
         static_cast<long>(body_.particles.size()), fixedType,
         std::vector<std::string>{"midspanDeflection", "supportReaction"}
     );
+    loading_->setInputs(inputs());
     std::unique_ptr<Checkpoint> resume;
     if (options_.resume)
     {
@@ -522,6 +538,7 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     j["steps"] = state.steps;
     j["dt"] = body_.dt;
     j["ranks"] = long(context_.ranks());
+    j["inputs_fingerprint"] = loading_->inputs().fingerprint();
     j["wall_s"] = wallSeconds;
     j["loop_wall_s"] = loading_->loopSeconds();
     j["particle_steps_per_s"] = loading_->loopSteps() * double(body_.particles.size()) / loading_->loopSeconds();

@@ -2,11 +2,15 @@
 """A run stopped part-way (as if killed while writing its next checkpoint: a
 newer LIGGGHTS restart and a half-written one lie beside the last complete
 checkpoint) and resumed gives the answer of the uninterrupted run to the last
-bit: the same force curve and time axis, peak and broken bonds.
+bit: the same force curve and time axis, peak and broken bonds. Before that,
+a resume against other inputs (another platen speed on the command line,
+another breakN) is refused with a message naming the input and the
+checkpoint, and leaves the checkpoint as it was.
 
 usage: resumeBeam.py CASE WORKDIR APP"""
 import os
 import shutil
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
@@ -27,11 +31,34 @@ newer_step = int(restarts[0].rsplit(".", 1)[1]) + 1400
 shutil.copy(os.path.join(checkpoint, restarts[0]), os.path.join(checkpoint, f"liggghts.restart.{newer_step}"))
 with open(os.path.join(checkpoint, "liggghts.restart.tmp"), "wb") as f:
     f.write(b"LammpS RestartFile half writ")
+
+
+def refused(extra_args, names):
+    """The resume is refused: exit 1, a message naming each of `names`, the checkpoint untouched."""
+    before = {f: open(os.path.join(checkpoint, f), "rb").read() for f in os.listdir(checkpoint)}
+    run = subprocess.run(["mpirun", "--allow-run-as-root", "-np", "1", app, "-case", stopped] + extra_args,
+                         capture_output=True, text=True)
+    text = run.stdout + run.stderr
+    after = {f: open(os.path.join(checkpoint, f), "rb").read() for f in os.listdir(checkpoint)}
+    missing = [n for n in names if n not in text]
+    ok = run.returncode == 1 and not missing and before == after
+    print(("ok   " if ok else "FAIL ") + f"{' '.join(extra_args)}: exit {run.returncode}, names {names}"
+          + (f", missing {missing}" if missing else "") + ("" if before == after else ", checkpoint CHANGED"))
+    return ok
+
+
+refusals_ok = refused(["-particles", "400", "-platenSpeed", "0.1", "-resume"],
+                      ["iceBeamDEM.checkpoint", "command line -platenSpeed", "'0.2'", "'0.1'", "without -resume"])
+ice = os.path.join(stopped, "constant", "iceProperties")
+breakN = iceCases.get_entry(ice, "bondFamilies.ice.breakN")
+iceCases.set_entry(ice, "bondFamilies.ice.breakN", 0.002)
+refusals_ok &= refused(args + ["-resume"], ["iceBeamDEM.checkpoint", "iceProperties/bondFamilies.ice.breakN"])
+iceCases.set_entry(ice, "bondFamilies.ice.breakN", breakN)
 iceCases.run_app(app, stopped, 1, args + ["-resume"], "log.iceBeamDEM.2")
 
 a, b = iceCases.curve(whole), iceCases.curve(stopped)
 sa, sb = iceCases.summary(whole), iceCases.summary(stopped)
-failed = []
+failed = [] if refusals_ok else ["a resume against changed inputs was not refused as it should be"]
 if a["time"] != b["time"]:
     failed.append("the resumed run's time axis differs")
 differing = [k for k, (x, y) in enumerate(zip(a["force"], b["force"])) if x != y]

@@ -13,7 +13,12 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
             / (L B)
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
   badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
-            message naming the entry and a non-zero exit"""
+            message naming the entry and a non-zero exit
+  stale     (e) a saved ridge and a checkpoint are never used against other inputs: -stage load
+            after the freeze-bond set or the layer thickness changed, and -resume after the
+            platen speed or breakN changed, are refused naming the entry, the file and the
+            command that rebuilds it; a change the ridge does not depend on (the test's speed)
+            loads it, and one the run does not depend on (writeInterval) resumes"""
 import json
 import math
 import os
@@ -306,6 +311,61 @@ def bad_input(work, bin_dir):
            ["ridgeProperties", "settledRubble", "noSuchKeel.h5"])
 
 
+def refused(app, case, args, log, names):
+    """Runs app expecting exit status 1 and a message holding every one of `names`."""
+    result = subprocess.run(["mpirun", "--allow-run-as-root", "-np", "1", app, "-case", case] + args,
+                            capture_output=True, text=True)
+    text = result.stdout + result.stderr
+    open(os.path.join(case, log), "w").write(text)
+    missing = [n for n in names if n not in text]
+    message = next((l.strip() for l in text.splitlines() if "inputs" in l), text.strip()[-300:])
+    check(result.returncode == 1 and not missing,
+          f"{' '.join(args)}: exit {result.returncode}, message names {names}"
+          + (f" (missing {missing})" if missing else "") + f": {message}")
+
+
+def stale(work, bin_dir):
+    app = os.path.join(bin_dir, "ridgeDEM")
+    controls = (("maxTravel", 0.003), ("rampTravel", 0.001), ("writeInterval", 0.003),
+                ("checkpointInterval", 0.0015),
+                ("stopAfterHalfLoad", "no"))
+    case = ridge_case("rubblePunch", os.path.join(work, "stale"), work, controls, PUNCH_ENTRIES)
+    iceCases.run_app(app, case, 1, ["-stage", "assemble"], "log.assemble")
+    bonds = os.path.join(case, "constant", "freezeBondProperties")
+    props = os.path.join(case, "constant", "ridgeProperties")
+    control = os.path.join(case, "system", "controlDict")
+    ice = os.path.join(case, "constant", "iceProperties")
+
+    iceCases.set_entry(bonds, "fixedSetCoeffs.set", "ultimate")
+    refused(app, case, ["-stage", "load"], "log.staleSet",
+            ["ridge.h5", "freezeBondProperties/fixedSetCoeffs.set", "'4h'", "'ultimate'", "-stage assemble"])
+    iceCases.set_entry(bonds, "fixedSetCoeffs.set", "4h")
+    thickness = iceCases.get_entry(props, "consolidatedLayer.thickness")
+    iceCases.set_entry(props, "consolidatedLayer.thickness", 0.1)
+    refused(app, case, ["-stage", "load"], "log.staleThickness",
+            ["ridge.h5", "ridgeProperties/consolidatedLayer.thickness", "-stage assemble"])
+    iceCases.set_entry(props, "consolidatedLayer.thickness", thickness)
+
+    iceCases.set_entry(props, "test.speed", 0.025)      # the loading's, not the ridge's
+    iceCases.run_app(app, case, 1, ["-stage", "load"], "log.load")
+    check(os.path.exists(os.path.join(case, "DEM", "checkpoint", "ridgeDEM.checkpoint")),
+          "a changed test speed loads the saved ridge; the run leaves a checkpoint")
+
+    iceCases.set_entry(props, "test.speed", 0.0125)
+    refused(app, case, ["-stage", "load", "-resume"], "log.staleSpeed",
+            ["ridgeDEM.checkpoint", "ridgeProperties/test.speed", "'0.025'", "'0.0125'", "without -resume"])
+    iceCases.set_entry(props, "test.speed", 0.025)
+    iceCases.set_entry(ice, "bondFamilies.ice.breakN", 0.002)
+    refused(app, case, ["-stage", "load", "-resume"], "log.staleBreakN",
+            ["ridge.h5", "iceProperties/bondFamilies.ice.breakN"])
+    iceCases.set_entry(ice, "bondFamilies.ice.breakN", iceCases.get_entry(
+        os.path.join(CASES, "rubblePunch", "constant", "iceProperties"), "bondFamilies.ice.breakN"))
+    iceCases.set_entry(control, "writeInterval", 0.001)
+    iceCases.run_app(app, case, 1, ["-stage", "load", "-resume"], "log.resumed")
+    check("Resumed from the checkpoint" in open(os.path.join(case, "log.resumed")).read(),
+          "a changed writeInterval resumes from the checkpoint")
+
+
 def main():
     step, work, bin_dir = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
     os.makedirs(work, exist_ok=True)
@@ -323,6 +383,8 @@ def main():
         pull_up(work, bin_dir, sys.argv[4])
     elif step == "badInput":
         bad_input(work, bin_dir)
+    elif step == "stale":
+        stale(work, bin_dir)
     else:
         sys.exit(f"ridgeSmall.py: unknown step {step}")
     sys.exit(1 if failures else 0)

@@ -5,11 +5,16 @@
    fraction rho_i / rho_w within 1 %, and comes to rest;
 2. a small rubble beam settles to rest; freeze-bonding the same settled state
    on 1 and 2 ranks gives the same bonds; every freeze-bond joins particles of
-   different blocks that touch; the saved file holds every bond of the summary.
+   different blocks that touch; the saved file holds every bond of the summary;
+3. the settled rubble is not bonded against other inputs: -stage bond -shape
+   empirical on a cuboid settle, or after the box changed, is refused naming
+   the input, settled.h5 and the command that settles it anew; with the box
+   put back it bonds as before.
 
 usage: rubbleSmall.py CASE WORKDIR APP"""
 import json
 import os
+import subprocess
 import sys
 
 import h5py
@@ -78,4 +83,25 @@ check(bool(np.all(gap <= 1e-12)), f"every freeze-bond joins touching particles (
 ice = f["family"] == 0
 check(bool(np.all(f["block"][f["tagA"][ice] - 1] == f["block"][f["tagB"][ice] - 1])),
       "every ice bond lies inside one block")
+
+
+# 3. Stale settled rubble.
+def refused(args, names):
+    run = subprocess.run(["mpirun", "--allow-run-as-root", "-np", "1", app, "-case", beam] + args,
+                         capture_output=True, text=True)
+    text = run.stdout + run.stderr
+    missing = [n for n in names if n not in text]
+    check(run.returncode == 1 and not missing,
+          f"{' '.join(args)}: exit {run.returncode}, names {names}" + (f", missing {missing}" if missing else ""))
+
+
+refused(["-stage", "bond", "-shape", "empirical"], ["settled.h5", "block shape", "'cuboid'", "'empirical'", "-stage settle"])
+props = os.path.join(beam, "constant", "rubbleProperties")
+width = iceCases.get_entry(props, "box.width")
+iceCases.set_entry(props, "box.width", 0.7)
+refused(["-stage", "bond"], ["settled.h5", "rubbleProperties/box.width", "-stage settle"])
+iceCases.set_entry(props, "box.width", width)
+iceCases.run_app(app, beam, 1, ["-stage", "bond"], "log.bond_again")
+check(iceCases.summary(beam)["freeze_bonds"] == one["freeze_bonds"],
+      "the box put back, the settled rubble bonds again as before")
 sys.exit(1 if failures else 0)

@@ -1,6 +1,7 @@
 #include "Format.H"
 
 #include <algorithm>
+#include <charconv>
 #include <iomanip>
 #include <sstream>
 
@@ -27,6 +28,14 @@ std::string formatNumber(double v)
 std::string exactNumber(double v)
 {
     return withDigits(v, 17);
+}
+
+
+std::string shortestNumber(double v)
+{
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, v);
+    return std::string(text, result.ptr);
 }
 
 

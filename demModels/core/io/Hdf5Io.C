@@ -36,6 +36,28 @@ void writeDataset
 }
 
 
+std::string readStringAttributeOrEmpty(hid_t object, const char* name, const std::string& path)
+{
+    if (H5Aexists(object, name) <= 0)
+    {
+        return "";
+    }
+    const std::string context = hdf5Failure(path, std::string("cannot read attribute ") + name);
+    H5Id attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, context);
+    H5Id type(H5Aget_type(attribute.get()), H5Tclose, context);
+    if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+    {
+        throw std::runtime_error(context + " (not a fixed-length string)");
+    }
+    std::string value(H5Tget_size(type.get()), '\0');
+    if (H5Aread(attribute.get(), type.get(), value.data()) < 0)
+    {
+        throw std::runtime_error(context);
+    }
+    return value.substr(0, value.find('\0'));
+}
+
+
 void writeStringAttribute
 (
     hid_t object,

@@ -155,6 +155,10 @@ void SavedRubble::write(const std::string& path) const
         writeScalarAttribute(root.get(), "time", time, path);
         writeScalarAttribute(root.get(), "waterLevel", waterLevel, path);
         writeStringAttribute(root.get(), "description", description.empty() ? " " : description, path);
+        if (!provenance.empty())
+        {
+            writeStringAttribute(root.get(), "provenance", provenance, path);
+        }
     });
 }
 
@@ -170,6 +174,7 @@ SavedRubble SavedRubble::read(const std::string& path)
     H5Id root(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, hdf5Failure(path, "no root group"));
     r.time = readScalarAttribute(root.get(), "time", path);
     r.waterLevel = readScalarAttribute(root.get(), "waterLevel", path);
+    r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
     return r;
 }
 
