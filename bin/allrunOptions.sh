@@ -1,8 +1,8 @@
-# Sourced by every Allrun (after `top` is known): strict option checks, as the
-# applications' CommandLine does. Each check names the option and what it
-# allows; a failed check is a usage error: `Allrun: <message>` and the script's
-# usage line on stderr, exit status 2, before the script writes anything.
-# The usage line is the Allrun's `# Usage: ./Allrun ...` header comment (up to
+# Sourced by every Allrun (and the Allcleans that take options): strict option
+# checks, as the applications' CommandLine does. Each check names the option and
+# what it allows; a failed check is a usage error: `Allrun: <message>` and the
+# script's usage line on stderr, exit status 2, before the script writes anything.
+# The usage line is the script's `# Usage: ./Allrun ...` header comment (up to
 # two spaces in a row), so it is written once.
 #
 #   while [ $# -gt 0 ]; do
@@ -23,14 +23,14 @@ allrunScript="${BASH_SOURCE[1]:-}"
 # The usage line of the Allrun's header: "usage: ./Allrun [...]".
 allrun_usage() {
     local line
-    line="$(sed -n 's/^#[[:space:]]*Usage:[[:space:]]*//p' "$allrunScript" 2>/dev/null | head -1)"
+    line="$(sed -n 's/^#.*Usage:[[:space:]]*//p' "$allrunScript" 2>/dev/null | head -1)"
     line="${line%%  *}"
-    echo "usage: ${line:-./Allrun (see the header of $allrunScript)}"
+    echo "usage: ${line:-./$(basename "$allrunScript") (see the header of $allrunScript)}"
 }
 
 # usage_error MESSAGE: the message and the usage line on stderr, exit 2.
 usage_error() {
-    echo "Allrun: $1" >&2
+    echo "$(basename "$allrunScript"): $1" >&2
     allrun_usage >&2
     exit 2
 }
