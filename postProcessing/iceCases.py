@@ -5,6 +5,7 @@ run an application under mpirun, and read the results.
 
 Used by the sweep, speed-study and benchmark scripts with Debian's
 /usr/bin/python3."""
+import argparse
 import csv
 import json
 import os
@@ -203,3 +204,56 @@ def write_atomically(path, text):
     with open(tmp, "w") as f:
         f.write(text)
     os.replace(tmp, path)
+
+
+# argparse types for the studies' options, strict as the applications' command
+# lines: the whole string is read, and a count, a speed or a length of 0 or
+# less is refused (argparse then prints the usage and exits with status 2).
+_NUMBER = re.compile(r"\+?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
+
+
+def whole_number(minimum=1, maximum=None):
+    """A type: a whole number from minimum (to maximum), as an int (-jobs, -ranks)."""
+    def read(text):
+        if not re.fullmatch(r"\d+", text) or int(text) < minimum or (maximum is not None and int(text) > maximum):
+            bound = f"from {minimum} to {maximum}" if maximum is not None else f"of at least {minimum}"
+            raise argparse.ArgumentTypeError(f"needs a whole number {bound}, got '{text}'")
+        return int(text)
+    read.__name__ = "whole number"
+    return read
+
+
+def whole_text(minimum=1, maximum=None):
+    """As whole_number, but the text itself (for a study that hands it to an application)."""
+    check = whole_number(minimum, maximum)
+
+    def read(text):
+        check(text)
+        return text
+    read.__name__ = "whole number"
+    return read
+
+
+def positive_text(text):
+    """A type: a decimal number > 0 (0.2, 5e-3), the text itself."""
+    m = _NUMBER.fullmatch(text)
+    if not m or not re.search(r"[1-9]", m.group(1)):
+        raise argparse.ArgumentTypeError(f"needs a positive number, got '{text}'")
+    return text
+
+
+def positive_number(text):
+    """A type: a decimal number > 0, as a float (a platen speed, a length, a time)."""
+    return float(positive_text(text))
+
+
+def comma_list(item):
+    """A type: comma-separated items, each read by the type `item` (--speeds 0.2,0.1)."""
+    def read(text):
+        parts = text.split(",")
+        try:
+            return [item(p) for p in parts]
+        except argparse.ArgumentTypeError as e:
+            raise argparse.ArgumentTypeError(f"a comma-separated list, each item: {e}")
+    read.__name__ = "list"
+    return read

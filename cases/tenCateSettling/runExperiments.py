@@ -20,7 +20,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(TOP, "postProcessing"))
-from iceCases import copy_common, write_atomically  # noqa: E402
+from iceCases import copy_common, positive_text, write_atomically  # noqa: E402
 
 DIAMETER, RHO_P, G = 0.015, 1120.0, 9.81
 
@@ -85,10 +85,13 @@ def run(exp, app, end_time):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--iceFoam", default=os.path.join(TOP, "build", "coupling", "iceFoam"))
-    ap.add_argument("--only", default="")
-    ap.add_argument("--endTime", default="")
+    ap.add_argument("--only", default="", help="comma-separated experiments (E1,E4; default: all)")
+    ap.add_argument("--endTime", type=positive_text, default=None, help="simulated seconds (default: controlDict's)")
     a = ap.parse_args()
     os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    names = [e["experiment"] for e in experiments()]
+    if a.only and any(n not in names for n in a.only.split(",")):
+        ap.error(f"argument --only: needs experiments of {','.join(names)} separated by commas, got '{a.only}'")
     chosen = [e for e in experiments() if not a.only or e["experiment"] in a.only.split(",")]
     results = [run(e, a.iceFoam, a.endTime) for e in chosen]
     out = os.path.join(HERE, "postProcessing")

@@ -80,13 +80,11 @@ def median_run(runs):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("-particles", type=int, default=13000)
-    p.add_argument("-steps", type=int, default=2000)
-    p.add_argument("-repeats", type=int, default=3, help="bonded/plain pairs run back to back")
+    p.add_argument("-particles", type=iceCases.whole_number(20), default=13000)
+    p.add_argument("-steps", type=iceCases.whole_number(1), default=2000)
+    p.add_argument("-repeats", type=iceCases.whole_number(1), default=3, help="bonded/plain pairs run back to back")
     p.add_argument("-out", default=os.path.join(here, "benchmark"))
     a = p.parse_args()
-    if a.repeats < 1:
-        sys.exit(f"benchmark.py: -repeats {a.repeats}: must be at least 1")
     if shutil.which("yade") is None:
         sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
     load_start = os.getloadavg()[0]   # the machine may be shared: timings are only comparable at low load

@@ -109,10 +109,10 @@ def plot(refs, mean, path):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("-jobs", type=int, default=2)
-    p.add_argument("-particles", default="1200")
-    p.add_argument("-platenSpeed", default="0.2")
-    p.add_argument("-seeds", nargs="+", type=int, default=[1, 2])
+    p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
+    p.add_argument("-particles", type=iceCases.whole_text(20), default="1200")
+    p.add_argument("-platenSpeed", type=iceCases.positive_text, default="0.2")
+    p.add_argument("-seeds", nargs="+", type=iceCases.whole_number(0), default=[1, 2])
     p.add_argument("-out", default=os.path.join(here, "parametricSweep"))
     a = p.parse_args()
     refs = reference_runs()

@@ -56,10 +56,10 @@ def run_one(name, seed, out, particles, speed):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("-particles", default="1200")
-    parser.add_argument("-platenSpeed", default="0.1")
-    parser.add_argument("-seeds", nargs="+", default=["1", "2"])
-    parser.add_argument("-jobs", type=int, default=1)
+    parser.add_argument("-particles", type=iceCases.whole_text(20), default="1200")
+    parser.add_argument("-platenSpeed", type=iceCases.positive_text, default="0.1")
+    parser.add_argument("-seeds", nargs="+", type=iceCases.whole_text(0), default=["1", "2"])
+    parser.add_argument("-jobs", type=iceCases.whole_number(1), default=1)
     parser.add_argument("-variants", nargs="+", default=list(VARIANTS))
     args = parser.parse_args()
     unknown = [v for v in args.variants if v not in VARIANTS]

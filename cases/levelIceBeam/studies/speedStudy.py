@@ -42,10 +42,10 @@ def load(case):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("-particles", nargs="+", default=["1200", "3000"])
-    p.add_argument("-speeds", nargs="+", default=["0.8", "0.4", "0.2", "0.1", "0.05"])
-    p.add_argument("-ranks", type=int, default=1)
-    p.add_argument("-jobs", type=int, default=2)
+    p.add_argument("-particles", nargs="+", type=iceCases.whole_text(20), default=["1200", "3000"])
+    p.add_argument("-speeds", nargs="+", type=iceCases.positive_text, default=["0.8", "0.4", "0.2", "0.1", "0.05"])
+    p.add_argument("-ranks", type=iceCases.whole_number(1), default=1)
+    p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
     p.add_argument("-out", default=os.path.join(here, "speedStudy"))
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)

@@ -74,24 +74,17 @@ def row(target, speed, seed):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--resolution", choices=("quick", "default"), default="quick")
-    parser.add_argument("--run", type=int, default=6)
-    parser.add_argument("--speeds", default="0.2,0.1,0.05,0.025")
-    parser.add_argument("--seeds", default="1", help="consolidated-layer packing seeds, e.g. 1,2,3")
-    parser.add_argument("--jobs", type=int, default=max(1, min(2, os.cpu_count() or 1)))
+    parser.add_argument("--run", type=iceCases.whole_number(1), default=6)
+    parser.add_argument("--speeds", type=iceCases.comma_list(iceCases.positive_number), default="0.2,0.1,0.05,0.025")
+    parser.add_argument("--seeds", type=iceCases.comma_list(iceCases.whole_number(0)), default="1",
+                        help="consolidated-layer packing seeds, e.g. 1,2,3")
+    parser.add_argument("--jobs", type=iceCases.whole_number(1), default=max(1, min(2, os.cpu_count() or 1)))
     args = parser.parse_args()
-    try:
-        speeds = sorted((float(v) for v in args.speeds.split(",")), reverse=True)
-    except ValueError:
-        sys.exit(f"rateConvergence.py: --speeds expects numbers separated by commas, got '{args.speeds}'")
-    if not speeds or min(speeds) <= 0:
-        sys.exit("rateConvergence.py: --speeds must be positive (m/s)")
-    try:
-        seeds = [int(v) for v in args.seeds.split(",")]
-    except ValueError:
-        sys.exit(f"rateConvergence.py: --seeds expects integers separated by commas, got '{args.seeds}'")
+    speeds = sorted(args.speeds, reverse=True)
+    seeds = args.seeds
     runs = {r["run"]: r for r in ridgeMatrix.matrix()}
     if args.run not in runs:
-        sys.exit(f"rateConvergence.py: --run {args.run} is not in ridgeMatrix.csv (1-{len(runs)})")
+        parser.error(f"argument --run: {args.run} is not a run of ridgeMatrix.csv ({min(runs)}-{max(runs)})")
     run = runs[args.run]
     jobs = [(v, seed) for v in speeds for seed in seeds]
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:

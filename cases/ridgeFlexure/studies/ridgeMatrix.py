@@ -178,14 +178,18 @@ def plot(rows, base):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--resolution", choices=["default", "quick", "smoke"], default="default")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
-    parser.add_argument("--runs", default="", help="comma-separated run numbers (default: all 16)")
+    parser.add_argument("--jobs", type=iceCases.whole_number(1), default=os.cpu_count() or 1)
+    parser.add_argument("--runs", type=iceCases.comma_list(iceCases.whole_number(1)), default=[],
+                        help="comma-separated run numbers (default: all 16)")
     args = parser.parse_args()
 
     runs = matrix()
     if args.runs:
-        wanted = {int(k) for k in args.runs.split(",")}
-        runs = [r for r in runs if r["run"] in wanted]
+        unknown = sorted(set(args.runs) - {r["run"] for r in runs})
+        if unknown:
+            parser.error("argument --runs: no run %s in ridgeMatrix.csv (runs %d-%d)"
+                         % (",".join(map(str, unknown)), min(r["run"] for r in runs), max(r["run"] for r in runs)))
+        runs = [r for r in runs if r["run"] in set(args.runs)]
     for run in runs:
         settled = os.path.join(keel_case(run, args.resolution), "DEM", "settled.h5")
         if not os.path.exists(settled):

@@ -30,8 +30,8 @@ VARIANTS = [
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--length", type=float, default=1.2)
-    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--length", type=iceCases.positive_number, default=1.2)
+    ap.add_argument("--np", type=iceCases.whole_number(1), default=1)
     a = ap.parse_args()
     case = os.path.dirname(HERE)
     rows = []

@@ -22,7 +22,7 @@ from ridgeSmall import build_keel, keel_file, ridge_case  # noqa: E402
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
 parser.add_argument("-work", default="/tmp/rubblePunchRate")
 parser.add_argument("-bin", default=os.path.join(TOP, "build", "demModels"))
-parser.add_argument("-speeds", type=float, nargs="+",
+parser.add_argument("-speeds", type=iceCases.positive_number, nargs="+",
                     default=[0.05, 0.025, 0.0125, 0.005])
 args = parser.parse_args()
 work = args.work

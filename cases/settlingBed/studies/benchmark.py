@@ -31,7 +31,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(CASE, "..", "..", "postProcessing"))
-from iceCases import BUILD, copy_case, copy_common, get_entry, run_app, set_entry, write_atomically  # noqa: E402
+from iceCases import (BUILD, copy_case, copy_common, get_entry, positive_number, run_app, set_entry,  # noqa: E402
+                      whole_number, write_atomically)
 
 ICEFOAM = os.path.join(BUILD, "coupling", "iceFoam")
 DEM_APP = os.path.join(BUILD, "coupling", "settlingBedDEM")
@@ -103,9 +104,9 @@ def mean_height_iceFoam(case):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--long", type=float, default=2.0, help="simulated s for none, hydrostatic, cfd")
-    ap.add_argument("--short", type=float, default=0.05, help="simulated s for DPMFoam (and cfd beside it)")
-    ap.add_argument("--ranks", type=int, default=1)
+    ap.add_argument("--long", type=positive_number, default=2.0, help="simulated s for none, hydrostatic, cfd")
+    ap.add_argument("--short", type=positive_number, default=0.05, help="simulated s for DPMFoam (and cfd beside it)")
+    ap.add_argument("--ranks", type=whole_number(1), default=1)
     a = ap.parse_args()
     for exe in (ICEFOAM, DEM_APP):
         if not os.access(exe, os.X_OK):

@@ -80,13 +80,13 @@ def tables(runs):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("-thickness", nargs="+", default=["0.10", "0.15", "0.20"])
-    p.add_argument("-speeds", nargs="+", default=["0.1"])
+    p.add_argument("-thickness", nargs="+", type=iceCases.positive_text, default=["0.10", "0.15", "0.20"])
+    p.add_argument("-speeds", nargs="+", type=iceCases.positive_text, default=["0.1"])
     p.add_argument("-set", nargs="+", action="append", default=[], metavar=("ENTRY", "VALUE"),
                    help="an iceProperties entry (dotted path) and the values to try; repeatable")
     p.add_argument("-quick", action="store_true")
-    p.add_argument("-ranks", type=int, default=1)
-    p.add_argument("-jobs", type=int, default=2)
+    p.add_argument("-ranks", type=iceCases.whole_number(1), default=1)
+    p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
     p.add_argument("-out", default=os.path.join(here, "calibration"))
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)

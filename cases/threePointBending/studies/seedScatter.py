@@ -35,15 +35,13 @@ def run_one(out, thickness, seed):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("-thickness", nargs="+", default=["0.10", "0.15", "0.20"])
-    p.add_argument("-seeds", nargs="+", type=int, default=[1, 2, 3])
-    p.add_argument("-jobs", type=int, default=2)
+    p.add_argument("-thickness", nargs="+", type=iceCases.positive_text, default=["0.10", "0.15", "0.20"])
+    p.add_argument("-seeds", nargs="+", type=iceCases.whole_number(0), default=[1, 2, 3])
+    p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
     p.add_argument("-out", default=None)
     a = p.parse_args()
     label = "breakN" + iceCases.get_entry(os.path.join(CASE, "constant", "iceProperties"), "bondFamilies.ice.breakN")
     a.out = a.out or os.path.join(CASE, "runs", "seedScatter_" + label)
-    if any(s < 0 for s in a.seeds):
-        sys.exit("seedScatter.py: -seeds must be non-negative integers")
     os.makedirs(a.out, exist_ok=True)
     jobs = sorted(((d, s) for d in a.thickness for s in a.seeds), key=lambda j: -float(j[0]))
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
