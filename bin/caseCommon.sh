@@ -26,3 +26,10 @@ included_files() {
         [ -f "$name" ] && echo "$name"
     done
 }
+
+# result_complete DIR: whether DIR holds a finished run's result set: a
+# postProcessing/summary.json that does not say "complete": false (a run in the
+# making, killed or stopped by an error). The same as finished() in iceCases.py.
+result_complete() {
+    [ -f "$1/postProcessing/summary.json" ] && ! grep -q '"complete": false' "$1/postProcessing/summary.json"
+}

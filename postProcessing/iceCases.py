@@ -181,8 +181,26 @@ def run_app(app, case, ranks=1, args=(), log_name="log.run"):
     return time.time() - start
 
 
+def finished(case):
+    """Whether the case holds a finished run's result set: a summary.json that does not say
+    "complete": false (a run in the making, killed or stopped by an error)."""
+    path = os.path.join(case, "postProcessing", "summary.json")
+    if not os.path.exists(path):
+        return False
+    try:
+        return json.load(open(path)).get("complete", True) is not False
+    except ValueError:
+        return False
+
+
 def summary(case):
-    return json.load(open(os.path.join(case, "postProcessing", "summary.json")))
+    """The case's summary.json; refuses an incomplete result set (a run in the making, killed or
+    stopped by an error: its summary says "complete": false and why)."""
+    path = os.path.join(case, "postProcessing", "summary.json")
+    s = json.load(open(path))
+    if s.get("complete") is False:
+        raise RuntimeError(f"{path}: the result set is incomplete: {s.get('reason', 'no reason given')}")
+    return s
 
 
 def curve(case):

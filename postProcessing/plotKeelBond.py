@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from iceCases import curve, summary, write_atomically  # noqa: E402
+from iceCases import curve, finished, summary, write_atomically  # noqa: E402
 from plotForceDisplacement import save_atomically  # noqa: E402
 
 TESTS = {"pullUp": "tension", "directShear": "shear"}
@@ -39,7 +39,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     field = read_field(a.field)
     runs = {t: os.path.join(a.case, "runs", t) for t in TESTS
-            if os.path.exists(os.path.join(a.case, "runs", t, "postProcessing", "summary.json"))}
+            if finished(os.path.join(a.case, "runs", t))}
     if not runs:
         sys.exit(f"plotKeelBond.py: no finished test in {a.case}/runs")
 

@@ -32,7 +32,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from breakageRecord import MODES, read_breakage  # noqa: E402
-from iceCases import summary, write_atomically  # noqa: E402
+from iceCases import finished, summary, write_atomically  # noqa: E402
 from plotForceDisplacement import save_atomically  # noqa: E402
 
 MOMENTS = ("halfLoadBeforePeak", "peak", "halfLoadAfterPeak")
@@ -169,7 +169,7 @@ def main(argv=None):
     out = os.path.join(a.case, "postProcessing")
     os.makedirs(out, exist_ok=True)
     runs = {name: os.path.join(a.case, "runs", name) for name in a.runs
-            if os.path.exists(os.path.join(a.case, "runs", name, "postProcessing", "summary.json"))}
+            if finished(os.path.join(a.case, "runs", name))}
     if not runs:
         sys.exit(f"plotPunch.py: no finished run among {a.runs} in {a.case}/runs")
     hydrostatic = {name: run for name, run in runs.items() if water_level(run) == "hydrostatic"}

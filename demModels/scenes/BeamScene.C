@@ -302,11 +302,8 @@ void BeamScene::run()
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return platenForce(); };
     hooks.stopEjecta = [this] { return freezeEjecta(); };
-    loading_->run(*lmp_, *bonds_, hooks);
-
-    const double wall = context_.wallSeconds();
-    writeSummary(wall);
-    loading_->logEnd(wall);
+    loading_->run(*lmp_, *bonds_, hooks, [this] { writeSummary(context_.wallSeconds()); });
+    loading_->logEnd(context_.wallSeconds());
 }
 
 
@@ -368,6 +365,7 @@ void BeamScene::writeSummary(double wallSeconds) const
     auto orNull = [](bool known, double v) { return known ? Json(v) : Json(nullptr); };
     Json j;
     j["case"] = "levelIceBeam";
+    j["complete"] = true;
     j["elastic_slope_N_per_m"] = rise.elasticSlope;
     j["elastic_slope_fit_R2"] = rise.slopeFitR2;
     j["first_peak_force_N"] = first.force;

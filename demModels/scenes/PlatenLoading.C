@@ -1,6 +1,7 @@
 #include "PlatenLoading.H"
 #include "Format.H"
 
+#include "AtomicFile.H"
 #include "Dictionary.H"
 #include "IceBondForces.H"
 #include "InputError.H"
@@ -208,7 +209,77 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
 }
 
 
-void PlatenLoading::run(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks)
+void PlatenLoading::run
+(
+    LiggghtsInstance& lmp,
+    IceBondForces& bonds,
+    const Hooks& hooks,
+    const std::function<void()>& writeSummary
+)
+{
+    beginResultSet();
+    try
+    {
+        load(lmp, bonds, hooks);
+        writeSummary();
+    }
+    catch (const std::exception& e)
+    {
+        markIncomplete(std::string("stopped by an error: ") + e.what());
+        throw;
+    }
+}
+
+
+void PlatenLoading::beginResultSet() const
+{
+    if (context_.rank() != 0)
+    {
+        return;
+    }
+    if (!resumed_)
+    {
+        namespace fs = std::filesystem;
+        for (const char* file : {"postProcessing/summary.json", "postProcessing/platenForce.csv",
+                                 "postProcessing/breakage.h5", "VTK/particles.pvd", "VTK/bonds.pvd"})
+        {
+            fs::remove(context_.path(file));
+        }
+        if (fs::is_directory(context_.path("VTK")))
+        {
+            for (const auto& entry : fs::directory_iterator(context_.path("VTK")))
+            {
+                const std::string name = entry.path().filename().string();
+                if ((name.rfind("particles_", 0) == 0 || name.rfind("bonds_", 0) == 0)
+                 && entry.path().extension() == ".vtp")
+                {
+                    fs::remove(entry.path());
+                }
+            }
+        }
+    }
+    markIncomplete("in the making: " + context_.application() + (resumed_ ? " resumed" : " started")
+        + " it and has not finished; if it was killed, `-resume` continues it");
+}
+
+
+void PlatenLoading::markIncomplete(const std::string& reason) const
+{
+    if (context_.rank() != 0)
+    {
+        return;
+    }
+    std::filesystem::create_directories(context_.path("postProcessing"));
+    Json j;
+    j["complete"] = false;
+    j["reason"] = reason;
+    j["application"] = context_.application();
+    j["steps"] = state_.steps;
+    writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
+}
+
+
+void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks)
 {
     LoadingState& st = state_;
     const double speed = control_.speed;

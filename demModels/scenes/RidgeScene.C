@@ -813,11 +813,12 @@ void RidgeScene::load()
         hooks.advance = externalWater_->advance;
         hooks.stepsPerAdvance = externalWater_->stepsPerAdvance;
     }
-    loading_->run(*lmp_, *bonds_, hooks);
-
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    writeSummary(geometry, wall);
-    loading_->logEnd(wall);
+    auto stageWall = [wallStart]
+    {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    };
+    loading_->run(*lmp_, *bonds_, hooks, [&] { writeSummary(geometry, stageWall()); });
+    loading_->logEnd(stageWall());
 }
 
 
@@ -866,6 +867,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
 
     Json j;
     j["case"] = "ridge";
+    j["complete"] = true;
     j["test"] = settings_.test;
     j["water"] = externalWater_ ? externalWater_->name : toString(water_.level);
     j["consolidated_layer_m"] = settings_.layer.thickness;

@@ -437,11 +437,8 @@ void ThreePointBendingScene::run()
     hooks.force = [this] { return platenForce(); };
     hooks.extras = [this] { return std::vector<double>{midspanDeflection(), supportReaction()}; };
     hooks.stopEjecta = [this] { return stopEjecta(); };
-    loading_->run(*lmp_, *bonds_, hooks);
-
-    const double wall = context_.wallSeconds();
-    writeSummary(wall);
-    loading_->logEnd(wall);
+    loading_->run(*lmp_, *bonds_, hooks, [this] { writeSummary(context_.wallSeconds()); });
+    loading_->logEnd(context_.wallSeconds());
 }
 
 
@@ -502,6 +499,7 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     modes["bending"] = long(breaks.count(BreakMode::bending));
     Json j;
     j["case"] = "threePointBending";
+    j["complete"] = true;
     j["resolution"] = options_.quick ? "quick" : "standard";
     j["thickness_m"] = s.thickness;
     j["length_m"] = s.length;

@@ -14,6 +14,8 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
   badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
             message naming the entry and a non-zero exit
+  faults    (f) a punch SIGKILLed three times, each a random moment after a new checkpoint,
+            and resumed each time, ends with the uninterrupted run's force curve to the last bit
   stale     (e) a saved ridge and a checkpoint are never used against other inputs: -stage load
             after the freeze-bond set or the layer thickness changed, and -resume after the
             platen speed or breakN changed, are refused naming the entry, the file and the
@@ -140,7 +142,7 @@ def resume(work, bin_dir):
             time.sleep(0.05)
         run.kill()
         run.wait()
-    finished = os.path.exists(os.path.join(killed, "postProcessing", "summary.json"))
+    finished = iceCases.finished(killed)
     check(os.path.exists(checkpoint) and not finished,
           "the run was killed part-way, after writing a checkpoint" if not finished
           else "the run finished before it could be killed: nothing tested")
@@ -311,6 +313,44 @@ def bad_input(work, bin_dir):
            ["ridgeProperties", "settledRubble", "noSuchKeel.h5"])
 
 
+def faults(work, bin_dir):
+    import random
+    import signal
+    controls = (("maxTravel", 0.012), ("writeInterval", 0.004), ("checkpointInterval", 0.0015),
+                ("stopAfterHalfLoad", "no"))
+    app = os.path.join(bin_dir, "ridgeDEM")
+    whole = ridge_case("rubblePunch", os.path.join(work, "faults", "whole"), work, controls, PUNCH_ENTRIES)
+    iceCases.run_app(app, whole, 1, ["-stage", "all"], "log.ridgeDEM")
+    killed = ridge_case("rubblePunch", os.path.join(work, "faults", "killed"), work, controls, PUNCH_ENTRIES)
+    checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
+    kills = []
+    for attempt in range(3):
+        args = ["-stage", "all"] + (["-resume"] if attempt else [])
+        before = os.path.getmtime(checkpoint) if os.path.exists(checkpoint) else None
+        with open(os.path.join(killed, f"log.ridgeDEM.{attempt}"), "w") as log:
+            run = subprocess.Popen([app, "-case", killed] + args, stdout=log, stderr=subprocess.STDOUT, env=env)
+            # a newer checkpoint than the one this attempt started from, then a random moment
+            while run.poll() is None and (not os.path.exists(checkpoint) or os.path.getmtime(checkpoint) == before):
+                time.sleep(0.01)
+            delay = pick.uniform(0.0, 0.6)
+            time.sleep(delay)
+            run.send_signal(signal.SIGKILL)
+            run.wait()
+        kills.append(delay)
+    check(not iceCases.finished(killed),
+          f"killed three times, each {', '.join(f'{d:.2f}' for d in kills)} s after a new checkpoint, "
+          "before the run could finish")
+    summary = json.load(open(os.path.join(killed, "postProcessing", "summary.json")))
+    check(summary.get("complete") is False, f"the killed run's summary says it is incomplete: {summary.get('reason')}")
+    iceCases.run_app(app, killed, 1, ["-stage", "all", "-resume"], "log.ridgeDEM.final")
+    a, b = iceCases.curve(whole), iceCases.curve(killed)
+    check(a["time"] == b["time"] and a["force"] == b["force"] and a["brokenBonds"] == b["brokenBonds"],
+          f"resumed after three kills: {len(b['time'])} samples against {len(a['time'])}, time axis, force and "
+          f"broken bonds {'identical' if a['force'] == b['force'] else 'DIFFERENT'} to the uninterrupted run's")
+
+
 def refused(app, case, args, log, names):
     """Runs app expecting exit status 1 and a message holding every one of `names`."""
     result = subprocess.run(["mpirun", "--allow-run-as-root", "-np", "1", app, "-case", case] + args,
@@ -385,6 +425,8 @@ def main():
         bad_input(work, bin_dir)
     elif step == "stale":
         stale(work, bin_dir)
+    elif step == "faults":
+        faults(work, bin_dir)
     else:
         sys.exit(f"ridgeSmall.py: unknown step {step}")
     sys.exit(1 if failures else 0)

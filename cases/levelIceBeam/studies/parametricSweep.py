@@ -38,7 +38,7 @@ def reference_runs():
 
 def run_one(ref, seed, out, particles, speed):
     case = os.path.join(out, f"run{int(ref['run']):02d}_seed{seed}")
-    if not os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+    if not iceCases.finished(case):
         iceCases.copy_case(os.path.join(here, ".."), case)
         ice = os.path.join(case, "constant", "iceProperties")
         for entry in ("material.youngsModulus", "bondFamilies.ice.youngsModulus"):

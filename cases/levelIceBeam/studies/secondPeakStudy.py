@@ -35,7 +35,7 @@ VARIANTS = {
 
 def run_one(name, seed, out, particles, speed):
     case = os.path.join(out, f"{name}_seed{seed}")
-    if not os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+    if not iceCases.finished(case):
         iceCases.copy_case(os.path.join(here, ".."), case)
         for relative, entry, value in VARIANTS[name]:
             iceCases.set_entry(os.path.join(case, relative), entry, value)

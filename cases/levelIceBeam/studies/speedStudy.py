@@ -25,7 +25,7 @@ import iceCases  # noqa: E402
 
 def run_one(out, particles, speed, ranks):
     case = os.path.join(out, f"n{particles}_v{speed}")
-    if not os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+    if not iceCases.finished(case):
         iceCases.copy_case(os.path.join(here, ".."), case)
         iceCases.run_app("iceBeamDEM", case, ranks, ["-particles", particles, "-platenSpeed", speed],
                          "log.iceBeamDEM")

@@ -91,11 +91,10 @@ def prepare(run, resolution, target=None):
 def execute(run, resolution):
     """Runs (or resumes) one run and its failure analysis; returns its wall time or None if it was done."""
     target = prepare(run, resolution)
-    summary = os.path.join(target, "postProcessing", "summary.json")
-    if os.path.exists(summary) and os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
+    if iceCases.finished(target) and os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
         return None
     start = time.time()
-    if not os.path.exists(summary):
+    if not iceCases.finished(target):
         resume = os.path.exists(os.path.join(target, "DEM", "checkpoint"))
         iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
                          log_name="log.ridgeDEM")

@@ -30,7 +30,7 @@ def run_one(out, quick, thickness, speed, entries, ranks):
     name = "_".join([("quick" if quick else "std"), f"D{thickness}", f"v{speed}"]
                     + [f"{k.split('.')[-1]}{v}" for k, v in entries])
     case = os.path.join(out, name)
-    if os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+    if iceCases.finished(case):
         return case
     iceCases.copy_case(case_dir, case)
     ice = os.path.join(case, "constant", "iceProperties" + (".quick" if quick else ""))

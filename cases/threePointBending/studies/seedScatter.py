@@ -25,7 +25,7 @@ import iceCases  # noqa: E402
 
 def run_one(out, thickness, seed):
     case = os.path.join(out, f"D{thickness}_seed{seed}")
-    if os.path.exists(os.path.join(case, "postProcessing", "summary.json")):
+    if iceCases.finished(case):
         return case
     iceCases.copy_case(CASE, case)
     iceCases.set_entry(os.path.join(case, "constant", "bendingProperties"), "packing.seed", seed)
