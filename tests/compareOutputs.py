@@ -41,16 +41,26 @@ def equal(x, y):
 
 
 def differing_entries(before, after, roots):
+    """(datasets or groups that differ, attribute sets that differ only by the checkout's path,
+    attribute names present or different on one side only: metadata, not data)."""
     a, b = hdf5_contents(before), hdf5_contents(after)
     if a.keys() != b.keys():
-        return sorted(set(a) ^ set(b)), []
-    differing, path_only = [], []
+        return sorted(set(a) ^ set(b)), [], []
+    differing, path_only, metadata = [], [], []
     for key in a:
         if equal(a[key], b[key]):
             continue
-        texts = [str(a[key]).replace(roots[0], "ROOT"), str(b[key]).replace(roots[1], "ROOT")]
-        (path_only if texts[0] == texts[1] else differing).append(key)
-    return differing, path_only
+        if isinstance(a[key], dict):
+            x = {k: str(v).replace(roots[0], "ROOT") for k, v in a[key].items()}
+            y = {k: str(v).replace(roots[1], "ROOT") for k, v in b[key].items()}
+            changed = sorted(k for k in set(x) | set(y) if x.get(k) != y.get(k))
+            if changed:
+                metadata.extend(f"{key}:{k}" for k in changed)
+            else:
+                path_only.append(key)
+        else:
+            differing.append(key)
+    return differing, path_only, metadata
 
 
 def main():
@@ -58,8 +68,9 @@ def main():
         sys.exit(__doc__)
     before, after = sys.argv[1:]
     roots = [os.path.dirname(os.path.dirname(os.path.abspath(p))) for p in (before, after)]
-    counts = {"identical": 0, "equal but for the checkout path": 0, "DIFFERENT": 0, "MISSING after": 0,
-              "new after": 0}
+    counts = {"identical": 0, "equal but for the checkout path": 0, "equal data, other attributes": 0,
+              "DIFFERENT": 0, "MISSING after": 0, "new after": 0}
+    attributes = set()
     for rel in sorted(set(files(before)) | set(files(after))):
         a, b = os.path.join(before, rel), os.path.join(after, rel)
         if not os.path.exists(b):
@@ -69,12 +80,16 @@ def main():
         elif rel.endswith(".csv"):
             verdict = "identical" if open(a, "rb").read() == open(b, "rb").read() else "DIFFERENT"
         else:
-            differing, path_only = differing_entries(a, b, roots)
-            verdict = "DIFFERENT" if differing else "equal but for the checkout path" if path_only else "identical"
+            differing, path_only, metadata = differing_entries(a, b, roots)
+            attributes.update(m.split(":", 1)[1] for m in metadata)
+            verdict = ("DIFFERENT" if differing else "equal data, other attributes" if metadata
+                       else "equal but for the checkout path" if path_only else "identical")
         counts[verdict] += 1
         if verdict in ("DIFFERENT", "MISSING after"):
             print(f"{verdict}: {rel}")
     print(", ".join(f"{n} {k}" for k, n in counts.items()))
+    if attributes:
+        print("attributes that differ (HDF5 metadata, not data):", ", ".join(sorted(attributes)))
     sys.exit(1 if counts["DIFFERENT"] or counts["MISSING after"] else 0)
 
 

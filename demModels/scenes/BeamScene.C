@@ -103,9 +103,10 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
         packing.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
     }
     s.solidFraction = packing.getScalarOrDefault("solidFraction", 0.6);
-    if (s.solidFraction <= 0.0 || s.solidFraction >= 0.74)
+    if (s.solidFraction <= 0.0 || s.solidFraction > randomClosePackingFraction)
     {
-        packing.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+        packing.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
+                     "denser than random close packing (0.64)");
     }
     s.seed = static_cast<unsigned>(packing.getLabelOrDefault("seed", 1));
 
@@ -406,6 +407,8 @@ void BeamScene::writeSummary(double wallSeconds) const
     j["ejected_particles_stopped"] = state.frozenEjecta;
     j["bonds"] = body_.bondStats.totalBonds;
     j["bonds_per_particle"] = body_.bondStats.meanBondsPerParticle;
+    j["solid_fraction"] = body_.packing.solidFraction;
+    j["solid_fraction_target"] = settings_.solidFraction;
     j["steps"] = steps;
     j["dt"] = body_.dt;
     j["ranks"] = context_.ranks();

@@ -35,8 +35,9 @@ BondedBody buildBondedBody
     const RandomPackingStats& stats = body.packing;
     std::ostringstream msg;
     msg << "Packing: " << body.particles.size() << " particles, radius " << stats.minRadius << " - "
-        << stats.maxRadius << " m, solid fraction " << stats.solidFraction
-        << ", largest overlap " << stats.maxOverlap << " of the mean radius";
+        << stats.maxRadius << " m, solid fraction " << stats.solidFraction << " (target "
+        << spec.targetSolidFraction << "; the box walls leave voids a packing cannot fill), largest overlap "
+        << stats.maxOverlap << " of the mean radius";
     log(msg.str());
 
     BondBuilder builder(ice);

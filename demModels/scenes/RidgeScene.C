@@ -13,6 +13,7 @@
 #include "Json.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
+#include "RandomPacking.H"
 #include "SceneSetup.H"
 #include "StlWriter.H"
 #include "TimeStep.H"
@@ -95,9 +96,10 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
         cl.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
     }
     s.layer.solidFraction = cl.getScalarOrDefault("solidFraction", 0.6);
-    if (s.layer.solidFraction <= 0.0 || s.layer.solidFraction >= 0.74)
+    if (s.layer.solidFraction <= 0.0 || s.layer.solidFraction > randomClosePackingFraction)
     {
-        cl.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+        cl.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
+                "denser than random close packing (0.64)");
     }
     s.layer.seed = static_cast<unsigned>(cl.getLabelOrDefault("seed", 1));
     if (s.layer.thickness > 0.0 && s.layer.thickness < 1.25 * s.layer.particleDiameter)
@@ -346,6 +348,26 @@ void RidgeScene::startLiggghts
 }
 
 
+void RidgeScene::requireInsideBox(const SavedRubble& keel) const
+{
+    // A keel of another box would reach LIGGGHTS as "Did not assign all atoms correctly".
+    const double tolerance = 1e-9;
+    for (const SavedParticle& p : keel.particles)
+    {
+        const Vec3& x = p.position;
+        if (x.x() < -tolerance || x.x() > settings_.layer.length + tolerance
+         || x.y() < -tolerance || x.y() > settings_.layer.width + tolerance)
+        {
+            std::ostringstream where;
+            where << "a particle of the keel " << settings_.keelFile << " lies at (" << x.x() << ", " << x.y()
+                  << "), outside this case's box of " << settings_.layer.length << " x " << settings_.layer.width
+                  << " m: the keel was built in another box (box.length/box.width must be the keel's)";
+            throw InputError(context_.path("constant/ridgeProperties"), "box", where.str());
+        }
+    }
+}
+
+
 void RidgeScene::assemble()
 {
     const auto wallStart = std::chrono::steady_clock::now();
@@ -355,7 +377,8 @@ void RidgeScene::assemble()
             "'" + settings_.keelFile + "' does not exist: build the keel first (its rubble case's "
             "./Allrun, or rubbleDEM -stage settle)");
     }
-    const SavedRubble keel = SavedRubble::read(settings_.keelFile);
+    const SavedRubble keel = SavedRubble::read(settings_.keelFile, SavedRubble::settledRubble);
+    requireInsideBox(keel);
     const RidgeLayout layout = assembleRidge(keel.particles, settings_.layer, settings_.trimDepth);
     layerFirstTag_ = layout.keelParticles + 1;
     const int layerCount = static_cast<int>(layout.particles.size()) - layout.keelParticles;
@@ -478,6 +501,7 @@ void RidgeScene::assemble()
     ridge.time = 0.0;
     ridge.waterLevel = waterParameters.surfaceLevel;
     ridge.provenance = assemblyInputs().text();
+    ridge.kind = SavedRubble::ridge;
     ridge.description = "ridge assembled by ridgeDEM from " + settings_.keelFile + ": keel trimmed by "
         + formatNumber(settings_.trimDepth) + " m, consolidated layer " + formatNumber(settings_.layer.thickness)
         + " m (block " + std::to_string(layout.clBlock) + "), pressed " + formatNumber(settings_.pressDepth) + " m";
@@ -675,7 +699,7 @@ void RidgeScene::load()
     {
         throw InputError(context_.path("DEM/ridge.h5"), "(file)", "missing: run the assemble stage first (-stage assemble)");
     }
-    const SavedRubble ridge = SavedRubble::read(context_.path("DEM/ridge.h5"));
+    const SavedRubble ridge = SavedRubble::read(context_.path("DEM/ridge.h5"), SavedRubble::ridge);
     const Provenance ridgeInputs = Provenance::fromText(ridge.provenance);
     requireSameInputs(ridgeInputs, assemblyInputs(ridgeInputs), context_.path("DEM/ridge.h5"),
         "ridgeDEM -case " + settings_.caseDir + " -stage assemble");

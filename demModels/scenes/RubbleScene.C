@@ -412,7 +412,7 @@ void RubbleScene::settle()
     const std::string checkpoint = context_.path("DEM/settling.checkpoint.h5");
     if (settings_.resume && std::filesystem::exists(checkpoint))
     {
-        const SavedRubble saved = SavedRubble::read(checkpoint);
+        const SavedRubble saved = SavedRubble::read(checkpoint, SavedRubble::settlingCheckpoint);
         requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), checkpoint,
             "rubbleDEM -case " + settings_.caseDir + " -stage settle (without -resume)");
         t = saved.time;
@@ -466,6 +466,7 @@ void RubbleScene::settle()
         {
             SavedRubble state = gatherState(t);
             state.provenance = settlingInputs().text();
+            state.kind = SavedRubble::settlingCheckpoint;
             if (context_.rank() == 0) state.write(checkpoint);
             nextCheckpoint = t + settings_.checkpointInterval;
         }
@@ -484,6 +485,7 @@ void RubbleScene::settle()
     context_.log(msg.str());
     SavedRubble state = gatherState(t);
     state.provenance = settlingInputs().text();
+    state.kind = SavedRubble::settledRubble;
     if (context_.rank() == 0)
     {
         state.write(context_.path("DEM/settled.h5"));
@@ -550,6 +552,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
 {
     SavedRubble state = gatherState(layer_.time);
     state.provenance = bondingInputs().text();
+    state.kind = SavedRubble::bondedRubble;
     if (context_.rank() != 0)
     {
         return;
@@ -646,7 +649,7 @@ void RubbleScene::run()
         {
             throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
         }
-        const SavedRubble saved = SavedRubble::read(settled);
+        const SavedRubble saved = SavedRubble::read(settled, SavedRubble::settledRubble);
         requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), settled,
             "rubbleDEM -case " + settings_.caseDir + " -stage settle");
         startLiggghts(&saved, true);

@@ -151,9 +151,10 @@ ThreePointBendingSettings ThreePointBendingSettings::read
         packing.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
     }
     s.solidFraction = packing.getScalarOrDefault("solidFraction", 0.6);
-    if (s.solidFraction <= 0.0 || s.solidFraction >= 0.74)
+    if (s.solidFraction <= 0.0 || s.solidFraction > randomClosePackingFraction)
     {
-        packing.fail("solidFraction", "expected a solid fraction in (0, 0.74)");
+        packing.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
+                     "denser than random close packing (0.64)");
     }
     s.seed = static_cast<unsigned>(packing.getLabelOrDefault("seed", 1));
 

@@ -19,6 +19,7 @@ check unknownDamping    constant/iceProperties  's/model .*hysteretic;/model spr
 check unsafeTimeStep    constant/iceProperties  's/factor .*;/factor 1.5;/'    "timeStep.factor"
 check badParticleCount  constant/beamProperties 's/particles .*;/particles abc;/' "packing.particles"
 check tooFewBondSlots   constant/iceProperties  's/maxBondsPerParticle .*;/maxBondsPerParticle 2;/' "maxBondsPerParticle"
+check unreachablePacking constant/beamProperties 's/solidFraction .*;/solidFraction 0.73;/' "packing.solidFraction"
 check missingFile       constant/beamProperties delete                         "beamProperties"
 check missingScript     DEM/in.levelIceBeam     delete                         "in.levelIceBeam"
 

@@ -1,3 +1,4 @@
+#include "InputError.H"
 #include "RubbleBuilder.H"
 #include "SavedRubble.H"
 
@@ -5,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 using namespace iceDEM;
@@ -120,4 +122,52 @@ TEST(SavedRubble, WriteAndReadBackBitForBit)
     for (std::size_t k = 0; k < s.particles.size(); ++k) EXPECT_TRUE(r.particles[k] == s.particles[k]) << k;
     for (std::size_t k = 0; k < s.bonds.size(); ++k) EXPECT_TRUE(r.bonds[k] == s.bonds[k]) << k;
     EXPECT_THROW(SavedRubble::read("/nonexistent/rubble.h5"), std::runtime_error);
+}
+
+
+TEST(SavedRubble, KindAndProvenanceAreKeptAndAnotherKindIsRefused)
+{
+    SavedRubble s;
+    SavedParticle p;
+    p.radius = 0.01;
+    p.density = 917.0;
+    s.particles = {p};
+    s.kind = SavedRubble::settledRubble;
+    s.provenance = "constant/rubbleProperties/box.length = 1.6\n";
+    const std::string path = (std::filesystem::temp_directory_path() / "savedRubbleKindTest.h5").string();
+    s.write(path);
+    const SavedRubble r = SavedRubble::read(path, SavedRubble::settledRubble);
+    EXPECT_EQ(r.kind, s.kind);
+    EXPECT_EQ(r.provenance, s.provenance);
+    try
+    {
+        SavedRubble::read(path, SavedRubble::ridge);
+        FAIL() << "a settled rubble was read as a ridge";
+    }
+    catch (const InputError& e)
+    {
+        EXPECT_EQ(e.file(), path);
+        EXPECT_NE(std::string(e.what()).find("holds a settled rubble, where a ridge is needed"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(SavedRubble, TruncatedAndForeignFilesAreInputErrorsNamingTheFile)
+{
+    const std::string dir = std::filesystem::temp_directory_path().string();
+    const std::string truncated = dir + "/savedRubbleTruncated.h5";
+    std::ofstream(truncated) << "\x89HDF\r\n";
+    EXPECT_THROW(SavedRubble::read(truncated), InputError);
+    const std::string text = dir + "/savedRubbleText.h5";
+    std::ofstream(text) << "particles 3\n";
+    try
+    {
+        SavedRubble::read(text);
+        FAIL() << "a text file was read as a saved stage";
+    }
+    catch (const InputError& e)
+    {
+        EXPECT_EQ(e.file(), text);
+        EXPECT_NE(std::string(e.what()).find("not an HDF5 file"), std::string::npos) << e.what();
+    }
 }

@@ -2,8 +2,10 @@
 
 #include "AtomicFile.H"
 #include "Hdf5Io.H"
+#include "InputError.H"
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 
 namespace iceDEM
@@ -159,11 +161,44 @@ void SavedRubble::write(const std::string& path) const
         {
             writeStringAttribute(root.get(), "provenance", provenance, path);
         }
+        if (!kind.empty())
+        {
+            writeStringAttribute(root.get(), "kind", kind, path);
+        }
     });
 }
 
 
-SavedRubble SavedRubble::read(const std::string& path)
+SavedRubble SavedRubble::read(const std::string& path, const std::string& expectedKind)
+{
+    if (!std::filesystem::exists(path))
+    {
+        throw InputError(path, "(file)", "does not exist");
+    }
+    if (H5Fis_hdf5(path.c_str()) <= 0)
+    {
+        throw InputError(path, "(file)", "is not an HDF5 file, or is truncated: not a saved stage of this program");
+    }
+    SavedRubble r;
+    try
+    {
+        r = readContents(path);
+    }
+    catch (const std::runtime_error& e)
+    {
+        throw InputError(path, "(file)", std::string("is not a readable saved stage (particles, bonds, time): ")
+            + e.what());
+    }
+    if (!expectedKind.empty() && r.kind != expectedKind)
+    {
+        throw InputError(path, "kind", "holds " + (r.kind.empty() ? std::string("no kind (written by an older version)")
+            : "a " + r.kind) + ", where a " + expectedKind + " is needed");
+    }
+    return r;
+}
+
+
+SavedRubble SavedRubble::readContents(const std::string& path)
 {
     QuietHdf5Errors quiet;
     H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
@@ -175,6 +210,7 @@ SavedRubble SavedRubble::read(const std::string& path)
     r.time = readScalarAttribute(root.get(), "time", path);
     r.waterLevel = readScalarAttribute(root.get(), "waterLevel", path);
     r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
+    r.kind = readStringAttributeOrEmpty(root.get(), "kind", path);
     return r;
 }
 
