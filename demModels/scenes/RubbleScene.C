@@ -24,6 +24,7 @@
 #include "WaterForces.H"
 
 #include "atom.h"
+#include "update.h"
 #include "lammps.h"
 
 #include <algorithm>
@@ -198,7 +199,7 @@ void RubbleScene::buildBlocks()
 }
 
 
-void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
+void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const std::string& restart)
 {
     const IceProperties& ice = settling ? settlingIce_ : ice_;
     const double r = 0.5*settings_.particleDiameter;
@@ -242,7 +243,8 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
     const double skin = 0.2*r;
     ScriptVariables variables
     {
-        {"dataFile", context_.path("DEM/rubble.data")},
+        {"readParticles", "\"" + (restart.empty() ? "read_data " + context_.path("DEM/rubble.data")
+                                                    : "read_restart " + restart) + "\""},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice, r, skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(dt_)},
@@ -254,7 +256,7 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
     variables.insert(variables.end(), contacts.begin(), contacts.end());
     lmp_ = context_.startLiggghts(variables, "DEM/in.rubbleBeam");
 
-    if (from)
+    if (from && restart.empty())
     {
         LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
         for (int i = 0; i < atom.nlocal; ++i)
@@ -298,6 +300,42 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling)
         bonds_->createBonds(rubble_.particles, iceBonds);
         context_.log("Ice bonds inside the blocks: " + bondStatistics(iceBonds, int(rubble_.particles.size())).summary());
     }
+    lmp_->command("run 0");
+}
+
+
+void RubbleScene::writeSettlingCheckpoint(double t)
+{
+    // LIGGGHTS' restart first, named by its step, then the saved state that
+    // names it, written atomically; older restarts go only after that, so a
+    // run killed at any moment leaves a checkpoint whose restart is there.
+    const std::string dir = context_.path("DEM");
+    const std::string restartName = "settling.restart." + std::to_string(lmp_->step());
+    lmp_->command("write_restart " + dir + "/settling.restart.tmp");
+    SavedRubble state = gatherState(t);
+    state.provenance = settlingInputs().text();
+    state.kind = SavedRubble::settlingCheckpoint;
+    state.restart = restartName;
+    if (context_.rank() == 0)
+    {
+        std::filesystem::rename(dir + "/settling.restart.tmp", dir + "/" + restartName);
+        state.write(context_.path("DEM/settling.checkpoint.h5"));
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+        {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind("settling.restart.", 0) == 0 && name != restartName)
+            {
+                std::filesystem::remove(entry.path());
+            }
+        }
+    }
+    MPI_Barrier(context_.comm());
+    // What a resumed run does after reading the restart: a set-up (which
+    // steps the bonds' histories once; the restore undoes it), the bonds
+    // put back, another set-up.
+    const std::vector<BondState> states = bonds_->bondStatesOfLocalAtoms();
+    lmp_->command("run 0");
+    bonds_->restoreBonds(states);
     lmp_->command("run 0");
 }
 
@@ -415,9 +453,19 @@ void RubbleScene::settle()
         const SavedRubble saved = SavedRubble::read(checkpoint, SavedRubble::settlingCheckpoint);
         requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), checkpoint,
             "rubbleDEM -case " + settings_.caseDir + " -stage settle (without -resume)");
+        const std::string restart = context_.path("DEM/" + saved.restart);
+        if (saved.restart.empty() || !std::filesystem::exists(restart))
+        {
+            throw InputError(checkpoint, "restart", "names no LIGGGHTS restart that is there ('" + saved.restart
+                + "'): start the settling again (without -resume)");
+        }
         t = saved.time;
         context_.log("Resuming the settling from " + checkpoint + " at t = " + formatNumber(t) + " s");
-        startLiggghts(&saved, true);
+        startLiggghts(&saved, true, restart);
+        steps_ = lmp_->step();
+        LAMMPS_NS::Update& update = *lmp_->engine().update;
+        update.atime = update.ntimestep * dt_;
+        update.atimestep = update.ntimestep;
     }
     else
     {
@@ -464,10 +512,8 @@ void RubbleScene::settle()
         }
         if (t >= nextCheckpoint)
         {
-            SavedRubble state = gatherState(t);
-            state.provenance = settlingInputs().text();
-            state.kind = SavedRubble::settlingCheckpoint;
-            if (context_.rank() == 0) state.write(checkpoint);
+            writeSettlingCheckpoint(t);
+            first = true;       // the next run makes its set-up, as a resumed run's first does
             nextCheckpoint = t + settings_.checkpointInterval;
         }
         if (quietChecks >= 2)

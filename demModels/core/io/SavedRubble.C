@@ -165,6 +165,10 @@ void SavedRubble::write(const std::string& path) const
         {
             writeStringAttribute(root.get(), "kind", kind, path);
         }
+        if (!restart.empty())
+        {
+            writeStringAttribute(root.get(), "restart", restart, path);
+        }
     });
 }
 
@@ -211,6 +215,7 @@ SavedRubble SavedRubble::readContents(const std::string& path)
     r.waterLevel = readScalarAttribute(root.get(), "waterLevel", path);
     r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
     r.kind = readStringAttributeOrEmpty(root.get(), "kind", path);
+    r.restart = readStringAttributeOrEmpty(root.get(), "restart", path);
     return r;
 }
 

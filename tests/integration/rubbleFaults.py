@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""A rubble settling (cases/rubbleBeam, reduced) SIGKILLed three times, each a random moment
+(seeded: ICEDEM_FAULT_SEED, default 1) after it wrote a new settling checkpoint, and resumed each
+time with -resume, ends with the uninterrupted settling's rubble to the last bit: every particle's
+position, velocity and spin and every bond's history in DEM/settled.h5, and the settled time.
+
+usage: rubbleFaults.py CASE WORKDIR APP"""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+case, work, app = sys.argv[1:]
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def small(name):
+    return iceCases.small_rubble_case(case, os.path.join(work, name), 1.0, 0.6, 0.2, 3, 30,
+                                      {"settling.checkpointInterval": 0.25})
+
+
+whole = small("whole")
+iceCases.run_app(app, whole, 1, ["-stage", "settle"], "log.settle")
+
+killed = small("killed")
+checkpoint = os.path.join(killed, "DEM", "settling.checkpoint.h5")
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
+delays = []
+for attempt in range(3):
+    before = os.path.getmtime(checkpoint) if os.path.exists(checkpoint) else None
+    args = ["-stage", "settle"] + (["-resume"] if attempt else [])
+    with open(os.path.join(killed, f"log.settle.{attempt}"), "w") as log:
+        run = subprocess.Popen([app, "-case", killed] + args, stdout=log, stderr=subprocess.STDOUT, env=env)
+        while run.poll() is None and (not os.path.exists(checkpoint) or os.path.getmtime(checkpoint) == before):
+            time.sleep(0.005)
+        delays.append(pick.uniform(0.0, 0.2))
+        time.sleep(delays[-1])
+        run.send_signal(signal.SIGKILL)
+        run.wait()
+settled = os.path.join(killed, "DEM", "settled.h5")
+check(not os.path.exists(settled),
+      f"killed three times, {', '.join(f'{d:.3f}' for d in delays)} s after a new checkpoint each, before it settled")
+iceCases.run_app(app, killed, 1, ["-stage", "settle", "-resume"], "log.settle.final")
+log = open(os.path.join(killed, "log.settle.final")).read()
+check("Resuming the settling from" in log, "the last run resumed from the checkpoint")
+
+with h5py.File(os.path.join(whole, "DEM", "settled.h5"), "r") as a, h5py.File(settled, "r") as b:
+    check(a.attrs["time"] == b.attrs["time"], f"settled at the same time ({a.attrs['time']:.6g} s, {b.attrs['time']:.6g} s)")
+    for group in ("particles", "bonds"):
+        for name in a[group]:
+            x, y = np.array(a[group][name]), np.array(b[group][name])
+            check(x.shape == y.shape and np.array_equal(x, y),
+                  f"{group}/{name}: " + ("identical" if x.shape == y.shape and np.array_equal(x, y)
+                                         else f"DIFFERENT (largest difference {np.max(np.abs(x - y)):.3g})"))
+sys.exit(1 if failures else 0)
