@@ -33,3 +33,40 @@ included_files() {
 result_complete() {
     [ -f "$1/postProcessing/summary.json" ] && ! grep -q '"complete": false' "$1/postProcessing/summary.json"
 }
+
+# ranks_dict NP N: a copy of system/decomposeParDict (of the case in the current
+# folder) for NP subdomains, coeffs n = N, written to postProcessing/decomposeParDict;
+# prints its absolute path, for decomposePar's and the solver's -decomposeParDict.
+# A run never edits the case's own dictionaries (tracked files; foamDictionary
+# -set also rewrites their header).
+ranks_dict() {
+    local dict="$PWD/postProcessing/decomposeParDict"
+    mkdir -p postProcessing
+    cp system/decomposeParDict "$dict"
+    foamDictionary -entry numberOfSubdomains -set "$1" "$dict" > /dev/null
+    foamDictionary -entry coeffs/n -set "$2" "$dict" > /dev/null
+    echo "$dict"
+}
+
+# publish_results RUN RESULTS FILE:NAME ...: the explicit step (./Allrun -publish)
+# that copies a finished run's files into the committed RESULTS folder: each FILE
+# (relative to RUN) as RESULTS/NAME, each written to a temporary file there and
+# renamed. Refuses, changing nothing, when RUN's result set is not complete
+# (result_complete) or a FILE is missing. Other files in RESULTS stay.
+publish_results() {
+    local run="$1" results="$2" pair
+    shift 2
+    result_complete "$run" || {
+        echo "publish: $run holds no finished run ($run/postProcessing/summary.json missing or \"complete\": false); nothing published" >&2
+        return 1
+    }
+    for pair; do
+        [ -f "$run/${pair%%:*}" ] || { echo "publish: $run/${pair%%:*} missing; nothing published" >&2; return 1; }
+    done
+    mkdir -p "$results"
+    for pair; do
+        cp "$run/${pair%%:*}" "$results/.${pair#*:}.publishing"
+        mv -f "$results/.${pair#*:}.publishing" "$results/${pair#*:}"
+        echo "published $results/${pair#*:}"
+    done
+}
