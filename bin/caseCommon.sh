@@ -48,25 +48,35 @@ ranks_dict() {
     echo "$dict"
 }
 
-# publish_results RUN RESULTS FILE:NAME ...: the explicit step (./Allrun -publish)
-# that copies a finished run's files into the committed RESULTS folder: each FILE
-# (relative to RUN) as RESULTS/NAME, each written to a temporary file there and
-# renamed. Refuses, changing nothing, when RUN's result set is not complete
-# (result_complete) or a FILE is missing. Other files in RESULTS stay.
+# publish_results RESULTS RUN ... -- FILE:NAME ...: the explicit step (./Allrun
+# -publish) that copies finished runs' files into the committed RESULTS folder:
+# each FILE (a path as given) as RESULTS/NAME, each written to a temporary file
+# there and renamed. Refuses, changing nothing, unless every RUN holds a complete
+# result set (result_complete) and every FILE exists. Other files in RESULTS stay.
 publish_results() {
-    local run="$1" results="$2" pair
-    shift 2
-    result_complete "$run" || {
-        echo "publish: $run holds no finished run ($run/postProcessing/summary.json missing or \"complete\": false); nothing published" >&2
-        return 1
-    }
+    local results="$1" run pair
+    shift
+    while [ $# -gt 0 ] && [ "$1" != -- ]; do
+        result_complete "$1" || {
+            echo "publish: $1 holds no finished run ($1/postProcessing/summary.json missing or \"complete\": false); nothing published" >&2
+            return 1
+        }
+        shift
+    done
+    shift
     for pair; do
-        [ -f "$run/${pair%%:*}" ] || { echo "publish: $run/${pair%%:*} missing; nothing published" >&2; return 1; }
+        [ -f "${pair%:*}" ] || { echo "publish: ${pair%:*} missing; nothing published" >&2; return 1; }
     done
     mkdir -p "$results"
     for pair; do
-        cp "$run/${pair%%:*}" "$results/.${pair#*:}.publishing"
-        mv -f "$results/.${pair#*:}.publishing" "$results/${pair#*:}"
-        echo "published $results/${pair#*:}"
+        cp "${pair%:*}" "$results/.${pair##*:}.publishing"
+        mv -f "$results/.${pair##*:}.publishing" "$results/${pair##*:}"
+        echo "published $results/${pair##*:}"
     done
+}
+
+# summary_value DIR KEY: the value of "KEY" (a number or a string) in
+# DIR/postProcessing/summary.json, empty if there is none.
+summary_value() {
+    sed -n 's/^ *"'"$2"'": "\{0,1\}\([^",]*\)"\{0,1\},\{0,1\}$/\1/p' "$1/postProcessing/summary.json" 2>/dev/null | head -1
 }
