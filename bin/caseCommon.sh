@@ -78,5 +78,6 @@ publish_results() {
 # summary_value DIR KEY: the value of "KEY" (a number or a string) in
 # DIR/postProcessing/summary.json, empty if there is none.
 summary_value() {
-    sed -n 's/^ *"'"$2"'": "\{0,1\}\([^",]*\)"\{0,1\},\{0,1\}$/\1/p' "$1/postProcessing/summary.json" 2>/dev/null | head -1
+    [ -f "$1/postProcessing/summary.json" ] || return 0
+    sed -n 's/^ *"'"$2"'": "\{0,1\}\([^",]*\)"\{0,1\},\{0,1\}$/\1/p' "$1/postProcessing/summary.json" | head -1
 }
