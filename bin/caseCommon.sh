@@ -33,3 +33,51 @@ included_files() {
 result_complete() {
     [ -f "$1/postProcessing/summary.json" ] && ! grep -q '"complete": false' "$1/postProcessing/summary.json"
 }
+
+# ranks_dict NP N: a copy of system/decomposeParDict (of the case in the current
+# folder) for NP subdomains, coeffs n = N, written to postProcessing/decomposeParDict;
+# prints its absolute path, for decomposePar's and the solver's -decomposeParDict.
+# A run never edits the case's own dictionaries (tracked files; foamDictionary
+# -set also rewrites their header).
+ranks_dict() {
+    local dict="$PWD/postProcessing/decomposeParDict"
+    mkdir -p postProcessing
+    cp system/decomposeParDict "$dict"
+    foamDictionary -entry numberOfSubdomains -set "$1" "$dict" > /dev/null
+    foamDictionary -entry coeffs/n -set "$2" "$dict" > /dev/null
+    echo "$dict"
+}
+
+# publish_results RESULTS RUN ... -- FILE:NAME ...: the explicit step (./Allrun
+# -publish) that copies finished runs' files into the committed RESULTS folder:
+# each FILE (a path as given) as RESULTS/NAME, each written to a temporary file
+# there and renamed. Refuses, changing nothing, unless every RUN holds a complete
+# result set (result_complete) and every FILE exists. Other files in RESULTS stay.
+publish_results() {
+    local results="$1" run pair
+    shift
+    while [ $# -gt 0 ] && [ "$1" != -- ]; do
+        result_complete "$1" || {
+            echo "publish: $1 holds no finished run ($1/postProcessing/summary.json missing or \"complete\": false); nothing published" >&2
+            return 1
+        }
+        shift
+    done
+    shift
+    for pair; do
+        [ -f "${pair%:*}" ] || { echo "publish: ${pair%:*} missing; nothing published" >&2; return 1; }
+    done
+    mkdir -p "$results"
+    for pair; do
+        cp "${pair%:*}" "$results/.${pair##*:}.publishing"
+        mv -f "$results/.${pair##*:}.publishing" "$results/${pair##*:}"
+        echo "published $results/${pair##*:}"
+    done
+}
+
+# summary_value DIR KEY: the value of "KEY" (a number or a string) in
+# DIR/postProcessing/summary.json, empty if there is none.
+summary_value() {
+    [ -f "$1/postProcessing/summary.json" ] || return 0
+    sed -n 's/^ *"'"$2"'": "\{0,1\}\([^",]*\)"\{0,1\},\{0,1\}$/\1/p' "$1/postProcessing/summary.json" | head -1
+}

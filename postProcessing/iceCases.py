@@ -12,6 +12,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -222,6 +223,19 @@ def write_atomically(path, text):
     with open(tmp, "w") as f:
         f.write(text)
     os.replace(tmp, path)
+
+
+def publish_files(sources, folder):
+    """A study's --publish: copies its output files (text) into the committed folder, each
+    atomically; exits naming the missing ones, having copied none, unless all exist."""
+    missing = [src for src in sources if not os.path.isfile(src)]
+    if missing:
+        sys.exit("not published: missing (run the study first): " + ", ".join(missing))
+    os.makedirs(folder, exist_ok=True)
+    for src in sources:
+        target = os.path.join(folder, os.path.basename(src))
+        write_atomically(target, open(src).read())
+        print("published", target)
 
 
 # argparse types for the studies' options, strict as the applications' command

@@ -43,36 +43,36 @@ SCRIPTS = {
          (["-particles", "400abc"], "-particles"), (["-platenSpeed", "abc"], "-platenSpeed"),
          (["-platenSpeed", "0"], "-platenSpeed"), (["-platenSpeed", "-1"], "-platenSpeed"),
          (["-steps", "1e3"], "-steps"), (["-steps"], "-steps"), (["-np", "65"], "-np")],
-        [[], ["-smoke"], ["-np", "1", "-particles", "400", "-platenSpeed", "0.2", "-steps", "100", "-resume"]]),
+        [[], ["-smoke"], ["-np", "1", "-particles", "400", "-platenSpeed", "0.2", "-steps", "100", "-resume"], ["-publish"]]),
     "cases/threePointBending/Allrun": (
         [(["-platenSpeed", "abc"], "-platenSpeed"), (["-steps", "0"], "-steps"),
          (["-thickness", "0.1"], "-thickness"), (["-quick", "1"], "1")],
-        [[], ["-smoke"], ["-quick", "-np", "1", "-platenSpeed", "0.1", "-steps", "10"]]),
+        [[], ["-smoke"], ["-quick", "-np", "1", "-platenSpeed", "0.1", "-steps", "10"], ["-publish"]]),
     "cases/floatingBlock/Allrun": (
         [(["-level", "x"], "-level"), (["-level"], "-level"), (["-level", "cfd", "-np", "0"], "-np")],
-        [[], ["-level", "cfd", "-smoke", "-np", "1"], ["-level", "hydrostatic", "-np", "2"]]),
+        [[], ["-level", "cfd", "-smoke", "-np", "1"], ["-level", "hydrostatic", "-np", "2"], ["-level", "cfd", "-publish"]]),
     "cases/floatingBlock/cfd/Allrun": (
         [(["-case"], "-case"), (["-case", "/nonexistent/case"], "-case")],
-        [[], ["-smoke"], ["-np", "2", "-case", "."]]),
-    "cases/freezeBondShear/Allrun": ([], [[], ["-smoke"]]),
-    "cases/freezeBondTension/Allrun": ([], [[], ["-np", "1", "-smoke"]]),
-    "cases/keelBond/Allrun": ([(["-resume", "1"], "1")], [[], ["-np", "1", "-resume", "-smoke"]]),
+        [[], ["-smoke"], ["-np", "2", "-case", "."], ["-publish"]]),
+    "cases/freezeBondShear/Allrun": ([], [[], ["-smoke"], ["-publish"]]),
+    "cases/freezeBondTension/Allrun": ([], [[], ["-np", "1", "-smoke"], ["-publish"]]),
+    "cases/keelBond/Allrun": ([(["-resume", "1"], "1")], [[], ["-np", "1", "-resume", "-smoke"], ["-publish"]]),
     "cases/packedBed/Allrun": (
         [(["-only", "x"], "-only"), (["-only"], "-only"), (["-case", "-smoke"], "-case")],
-        [[], ["-smoke"], ["-only", "fluidisation", "-np", "2"], ["-only", "all"]]),
+        [[], ["-smoke"], ["-only", "fluidisation", "-np", "2"], ["-only", "all"], ["-only", "fixed", "-publish"]]),
     "cases/ridgeFlexure/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-jobs", "x"], "-jobs"), (["-runs", "0"], "-runs"),
          (["-runs", "1,17"], "-runs"), (["-runs", "a"], "-runs"), (["-runs", "1,,2"], "-runs"),
          (["-runs"], "-runs")],
-        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"]]),
+        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-publish"]]),
     "cases/rubbleBeam/Allrun": (
         [(["-shape", "x"], "-shape"), (["-shape"], "-shape")],
-        [[], ["-smoke"], ["-shape", "empirical", "-resume", "-np", "1"]]),
+        [[], ["-smoke"], ["-shape", "empirical", "-resume", "-np", "1"], ["-publish"]]),
     "cases/rubblePunch/Allrun": (
         [(["-keels", "x"], "-keels"), (["-keels", ""], "-keels"), (["-water", "x"], "-water"),
          (["-water", "cfd", "-resume"], "-resume")],
         [[], ["-smoke"], ["-keels", "cuboid empirical", "-water", "cfd", "-rateStudy", "-np", "2"],
-         ["-keels", "empirical", "-resume"]]),
+         ["-keels", "empirical", "-resume"], ["-keels", "cuboid", "-water", "cfd", "-publish"]]),
     "cases/settlingBed/Allrun": (
         [(["-level", "x"], "-level"), (["-endTime", "0"], "-endTime"), (["-endTime", "abc"], "-endTime")],
         [[], ["-smoke"], ["-level", "none", "-endTime", "0.5", "-np", "2"]]),

@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Smoke test of one case: runs a copy of cases/CASE through its own ./Allrun
 with the given options, then checks the exit status and that each expected
-output file exists, is not empty and (if text) holds no nan.
+output file exists, is not empty and (if text) holds no nan, and that every
+file the copy got from the source tree is still byte-identical (a run writes
+only untracked places: postProcessing/, runs/, a study's output folder; results/
+changes only through ./Allrun -publish).
 
 The copy lives in a mirror of the project, WORK/NAME/, so that the Allrun finds
 what it finds in the source tree by its relative paths (../.. is the top):
@@ -16,6 +19,7 @@ usage: runSmoke.py --source TOP --build BUILD --work WORK --case CASE [--name NA
                    [--with OTHER ...] [--expect GLOB ...] -- ALLRUN_OPTIONS..."""
 import argparse
 import glob
+import hashlib
 import os
 import re
 import shutil
@@ -38,10 +42,22 @@ def case_files(top, folder):
 
 
 def copy_folder(top, folder, mirror):
+    """Copies the folder's files into the mirror; returns their paths there."""
+    copied = []
     for rel in case_files(top, folder):
         dest = os.path.join(mirror, rel)
         os.makedirs(os.path.dirname(dest), exist_ok=True)
         shutil.copy2(os.path.join(top, rel), dest)
+        copied.append(dest)
+    return copied
+
+
+def digest(path):
+    """The file's SHA-256, or a word saying why there is none."""
+    if not os.path.isfile(path):
+        return "missing"
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
 
 
 def check_output(case, pattern):
@@ -75,9 +91,11 @@ def main():
     name = a.case
     mirror = os.path.join(a.work, a.name or name)
     shutil.rmtree(mirror, ignore_errors=True)
+    copied = []
     for folder in [name, "common", *a.others]:
         if os.path.isdir(os.path.join(a.source, "cases", folder)):
-            copy_folder(a.source, os.path.join("cases", folder), mirror)
+            copied += copy_folder(a.source, os.path.join("cases", folder), mirror)
+    before = {path: digest(path) for path in copied}
     for link, target in (("build", a.build), ("postProcessing", "postProcessing"), ("bin", "bin"), ("tests", "tests")):
         os.symlink(os.path.join(a.source, target), os.path.join(mirror, link))
     case = os.path.join(mirror, "cases", name)
@@ -96,10 +114,16 @@ def main():
     problems = [f"./Allrun {' '.join(a.options)} exited {rc}"] if rc else []
     for pattern in a.expect:
         problems += check_output(case, pattern)
+    for path, hash_before in before.items():
+        hash_after = digest(path)
+        if hash_after != hash_before:
+            problems.append(f"{os.path.relpath(path, mirror)}: a file of the source tree "
+                            f"{'removed' if hash_after == 'missing' else 'changed'} by the run")
     for p in problems:
         print(f"FAIL smoke {name}: {p}")
     if not problems:
-        print(f"ok   smoke {name}: {len(a.expect)} output file pattern(s) present, non-empty, no nan")
+        print(f"ok   smoke {name}: {len(a.expect)} output file pattern(s) present, non-empty, no nan; "
+              f"{len(before)} source file(s) unchanged")
     return 1 if problems else 0
 
 

@@ -8,7 +8,7 @@
    Law2_ScGeom6D_CohFrictPhys_CohesionMoment) on the same packing, time step,
    pads and platen.
 
-    ./benchmark.py [-particles 13000] [-steps 2000] [-repeats 3]
+    ./benchmark.py [-particles 13000] [-steps 2000] [-repeats 3] [-out DIR] [-publish]
 
 The bonded and the plain run alternate -repeats times (the machine is shared
 and its speed drifts: a pair run back to back sees the same machine); each
@@ -18,8 +18,9 @@ the pairs' ratios, with their range. Yade runs once.
 Needs Debian's Yade besides the project's own packages: apt-get install yade.
 
 Reports particle-steps per second of the stepping loop (set-up excluded), the
-ratios, and peak resident memory (/usr/bin/time -v). Writes
-benchmark/benchmark.json (for programs) and benchmark/benchmark.md (for the README)."""
+ratios, and peak resident memory (/usr/bin/time -v). Writes benchmark.json (for
+programs) and benchmark.md (for the README) into -out (default ../runs/benchmark);
+-publish runs nothing and copies those two into the committed studies/benchmark/."""
 import argparse
 import json
 import os
@@ -83,8 +84,13 @@ def main():
     p.add_argument("-particles", type=iceCases.whole_number(20), default=13000)
     p.add_argument("-steps", type=iceCases.whole_number(1), default=2000)
     p.add_argument("-repeats", type=iceCases.whole_number(1), default=3, help="bonded/plain pairs run back to back")
-    p.add_argument("-out", default=os.path.join(here, "benchmark"))
+    p.add_argument("-out", default=os.path.join(here, "..", "runs", "benchmark"))
+    p.add_argument("-publish", action="store_true", help="run nothing; copy -out's benchmark.json and .md into studies/benchmark/")
     a = p.parse_args()
+    if a.publish:
+        iceCases.publish_files([os.path.join(a.out, n) for n in ("benchmark.json", "benchmark.md")],
+                               os.path.join(here, "benchmark"))
+        return
     if shutil.which("yade") is None:
         sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
     load_start = os.getloadavg()[0]   # the machine may be shared: timings are only comparable at low load

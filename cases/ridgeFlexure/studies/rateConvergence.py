@@ -4,14 +4,15 @@ several platen speeds; the force should converge as the speed falls.
 
 Each speed (and consolidated-layer packing seed) is a copy of the run under
 runs/rate_<resolution>/runNN_v<speed>[_seedS]/ (finished ones are skipped, killed ones resume).
-Writes results/rateConvergence_<resolution>_runNN.csv and .md (per run: peak force, travel at
+Writes runs/rate_<resolution>/rateConvergence_<resolution>_runNN.csv and .md (per run: peak force, travel at
 peak, the force averaged over +-1 mm at fixed travels, the kinetic to bond-energy ratio at the
 peak, wall time; per speed with several seeds: the mean peak and its spread, which is the scale of
 the fracture's chaos against which a rate effect must be judged) and a plot of force against
-speed.
+speed (.png). --publish runs nothing and writes them into the committed results/ folder
+instead; it refuses unless every speed and seed asked for is finished.
 
 Usage: studies/rateConvergence.py [--resolution quick|default] [--run 6] [--speeds 0.2,0.1,0.05]
-                                  [--seeds 1] [--jobs N]
+                                  [--seeds 1] [--jobs N] [--publish]
 """
 import argparse
 import concurrent.futures
@@ -79,6 +80,8 @@ def main():
     parser.add_argument("--seeds", type=iceCases.comma_list(iceCases.whole_number(0)), default="1",
                         help="consolidated-layer packing seeds, e.g. 1,2,3")
     parser.add_argument("--jobs", type=iceCases.whole_number(1), default=max(1, min(2, os.cpu_count() or 1)))
+    parser.add_argument("--publish", action="store_true",
+                        help="run nothing; write the table of the finished runs into results/")
     args = parser.parse_args()
     speeds = sorted(args.speeds, reverse=True)
     seeds = args.seeds
@@ -87,8 +90,14 @@ def main():
         parser.error(f"argument --run: {args.run} is not a run of ridgeMatrix.csv ({min(runs)}-{max(runs)})")
     run = runs[args.run]
     jobs = [(v, seed) for v in speeds for seed in seeds]
-    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        list(pool.map(lambda job: execute(run, args.resolution, *job), jobs))
+    if args.publish:
+        missing = [speed_dir(run, args.resolution, v, seed) for v, seed in jobs
+                   if not iceCases.finished(speed_dir(run, args.resolution, v, seed))]
+        if missing:
+            sys.exit("rateConvergence: not published: not finished: " + ", ".join(missing))
+    else:
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            list(pool.map(lambda job: execute(run, args.resolution, *job), jobs))
     # Every run of the folder, so that seeds added later join the table.
     rows = []
     for v in speeds:
@@ -97,7 +106,8 @@ def main():
                     speed_dir(run, args.resolution, v, s), "postProcessing", "summary.json")))):
             rows.append(row(speed_dir(run, args.resolution, v, seed), v, seed))
 
-    base = os.path.join(CASE, "results", "rateConvergence_%s_run%02d" % (args.resolution, args.run))
+    folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs", "rate_" + args.resolution)
+    base = os.path.join(folder, "rateConvergence_%s_run%02d" % (args.resolution, args.run))
     os.makedirs(os.path.dirname(base), exist_ok=True)
     columns = list(rows[0].keys())
     iceCases.write_atomically(base + ".csv", "\n".join(

@@ -7,10 +7,15 @@ freeze-bond set set in its dictionaries. Runs go in parallel (one rank each,
 --jobs at a time), a finished run (summary.json written) is skipped, and a
 killed one continues from its checkpoint, so the command can simply be run
 again. Each run is then classified by postProcessing/failureAnalysis.py, and
-the results table (results/ridgeMatrix_<resolution>.csv and .md) and the plot
-(results/ridgeMatrix_<resolution>.png) are written.
+the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
+(.png) of every finished run in runs/<resolution>/ are written there.
 
-Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5]
+--publish (./Allrun -publish) runs nothing: it writes the table and plot of
+runs/<resolution>/ into the committed results/ folder, and refuses unless all 16
+runs there are finished: a partial set is never published (nor merged into the
+published table, which would mix result sets).
+
+Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5] [--publish]
   smoke (./Allrun -smoke): the quick settings on small keels of runs/smoke/keels
   (1.6 x 0.4 m), 10 mm of platen travel, results in runs/smoke: checks that the case runs.
 """
@@ -129,8 +134,13 @@ def result_row(run, resolution):
     }
 
 
-def write_table(rows, resolution):
-    folder = os.path.join(CASE, "runs", "smoke") if resolution == "smoke" else os.path.join(CASE, "results")
+def analysed(run, resolution):
+    target = run_dir(run, resolution)
+    return iceCases.finished(target) and os.path.exists(
+        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json"))
+
+
+def write_table(rows, resolution, folder):
     os.makedirs(folder, exist_ok=True)
     base = os.path.join(folder, "ridgeMatrix_" + resolution)
     columns = list(rows[0].keys())
@@ -180,9 +190,24 @@ def main():
     parser.add_argument("--jobs", type=iceCases.whole_number(1), default=os.cpu_count() or 1)
     parser.add_argument("--runs", type=iceCases.comma_list(iceCases.whole_number(1)), default=[],
                         help="comma-separated run numbers (default: all 16)")
+    parser.add_argument("--publish", action="store_true",
+                        help="run nothing; write the table of all 16 finished runs into results/")
     args = parser.parse_args()
 
     runs = matrix()
+    if args.publish:
+        if args.resolution == "smoke" or args.runs:
+            parser.error("argument --publish: publishes the whole matrix of --resolution default or quick")
+        missing = [r["run"] for r in runs if not analysed(r, args.resolution)]
+        if missing:
+            sys.exit("ridgeMatrix: not published: run(s) %s not finished in %s (a partial matrix is never "
+                     "published; run them first)" % (",".join(map(str, missing)),
+                                                      os.path.join(CASE, "runs", args.resolution)))
+        rows = [result_row(r, args.resolution) for r in runs]
+        base = write_table(rows, args.resolution, os.path.join(CASE, "results"))
+        plot(rows, base)
+        print("Published: %s.csv, %s.md, %s.png" % (base, base, base))
+        return
     if args.runs:
         unknown = sorted(set(args.runs) - {r["run"] for r in runs})
         if unknown:
@@ -215,8 +240,9 @@ def main():
         for future in [pool.submit(one, r) for r in runs]:
             future.result()
 
-    rows = [result_row(r, args.resolution) for r in runs]
-    base = write_table(rows, args.resolution)
+    # The table of every finished run of the folder (runs of earlier invocations too).
+    rows = [result_row(r, args.resolution) for r in matrix() if analysed(r, args.resolution)]
+    base = write_table(rows, args.resolution, os.path.join(CASE, "runs", args.resolution))
     plot(rows, base)
     print("Results: %s.csv, %s.md, %s.png (%s in all)"
           % (base, base, base, time.strftime("%H:%M:%S", time.gmtime(time.time() - started))))

@@ -13,9 +13,10 @@ Each run is timed (wall clock, and the CPU time of the run's processes, which
 other users of a shared machine disturb less); cfd is also run for --short
 seconds, to set beside DPMFoam over the same interval.
 
-Usage: benchmark.py [--long 2] [--short 0.05] [--ranks 1]
-Writes studies/benchmark.json (atomically) and prints a markdown table for README.md;
-the run directories are studies/benchmark/<run>/.
+Usage: benchmark.py [--long 2] [--short 0.05] [--ranks 1] [--publish]
+Writes runs/benchmark/benchmark.json (atomically) and prints a markdown table for README.md;
+the run directories are runs/benchmark/<run>/. --publish runs nothing and copies
+runs/benchmark/benchmark.json into the committed studies/benchmark.json.
 """
 import argparse
 import csv
@@ -30,9 +31,10 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
+OUT = os.path.join(CASE, "runs", "benchmark")
 sys.path.insert(0, os.path.join(CASE, "..", "..", "postProcessing"))
-from iceCases import (BUILD, copy_case, copy_common, get_entry, positive_number, run_app, set_entry,  # noqa: E402
-                      whole_number, write_atomically)
+from iceCases import (BUILD, copy_case, copy_common, get_entry, positive_number, publish_files, run_app,  # noqa: E402
+                      set_entry, whole_number, write_atomically)
 
 ICEFOAM = os.path.join(BUILD, "coupling", "iceFoam")
 DEM_APP = os.path.join(BUILD, "coupling", "settlingBedDEM")
@@ -56,7 +58,7 @@ def timed(action):
 
 
 def prepare_iceFoam_case(name, end_time):
-    case = copy_case(CASE, os.path.join(HERE, "benchmark", name))
+    case = copy_case(CASE, os.path.join(OUT, name))
     shutil.copytree(os.path.join(CASE, "0"), os.path.join(case, "0"))
     set_entry(os.path.join(case, "system", "controlDict"), "endTime", end_time)
     subprocess.run(["blockMesh", "-case", case], check=True, stdout=subprocess.DEVNULL)
@@ -75,7 +77,7 @@ def lattice_positions(props):
 
 
 def prepare_dpm_case(end_time):
-    case = os.path.join(HERE, "benchmark", "DPMFoam")
+    case = os.path.join(OUT, "DPMFoam")
     shutil.rmtree(case, ignore_errors=True)
     shutil.copytree(os.path.join(CASE, "dpmFoam"), case)
     copy_common(case)
@@ -107,7 +109,11 @@ def main():
     ap.add_argument("--long", type=positive_number, default=2.0, help="simulated s for none, hydrostatic, cfd")
     ap.add_argument("--short", type=positive_number, default=0.05, help="simulated s for DPMFoam (and cfd beside it)")
     ap.add_argument("--ranks", type=whole_number(1), default=1)
+    ap.add_argument("--publish", action="store_true", help="run nothing; copy runs/benchmark/benchmark.json into studies/")
     a = ap.parse_args()
+    if a.publish:
+        publish_files([os.path.join(OUT, "benchmark.json")], HERE)
+        return 0
     for exe in (ICEFOAM, DEM_APP):
         if not os.access(exe, os.X_OK):
             sys.exit(f"{exe} not built: run bin/build")
@@ -145,7 +151,8 @@ def main():
     result["DPMFoam_over_cfd_same_interval_wall"] = per("DPMFoam_short") / per("cfd_short")
     result["DPMFoam_over_cfd_same_interval_cpu"] = per("DPMFoam_short", "cpu") / per("cfd_short", "cpu")
     result["load_average_end"] = os.getloadavg()[0]
-    write_atomically(os.path.join(HERE, "benchmark.json"), json.dumps(result, indent=2) + "\n")
+    os.makedirs(OUT, exist_ok=True)
+    write_atomically(os.path.join(OUT, "benchmark.json"), json.dumps(result, indent=2) + "\n")
 
     print("\n| run | simulated (s) | wall (s) | CPU (s) | wall s per simulated s | CPU s per simulated s |")
     print("|---|---|---|---|---|---|")

@@ -2,14 +2,15 @@
 """Scatter of the flexural strength over random packings: the case's calibrated inputs run for
 every thickness with several packing seeds (constant/bendingProperties packing.seed).
 
-    studies/seedScatter.py [-thickness 0.10 0.15 0.20] [-seeds 1 2 3] [-jobs 2] [-out DIR]
+    studies/seedScatter.py [-thickness 0.10 0.15 0.20] [-seeds 1 2 3] [-jobs 2] [-out DIR] [-publish]
 
 A single packing is one sample of a random solid, as one laboratory beam is; the calibration
 target is the regression through thousands of beams, so what should meet it is the mean over
-packings. Resumable (a run with a summary is skipped). Writes results/seedScatter_breakN<value>.csv
-(per run) and .md (per run, then per thickness: mean, sample standard deviation and the mean's
-error against the target), named by the case's bondFamilies.ice.breakN; runs go to
-runs/seedScatter_breakN<value>/ unless -out says otherwise."""
+packings. Resumable (a run with a summary is skipped). Runs go to runs/seedScatter_breakN<value>/
+unless -out says otherwise, and so do seedScatter_breakN<value>.csv (per run) and .md (per run,
+then per thickness: mean, sample standard deviation and the mean's error against the target),
+named by the case's bondFamilies.ice.breakN. -publish runs nothing and writes the two tables into
+the committed results/ folder instead; it refuses unless every run asked for is finished."""
 import argparse
 import concurrent.futures
 import math
@@ -39,14 +40,22 @@ def main():
     p.add_argument("-seeds", nargs="+", type=iceCases.whole_number(0), default=[1, 2, 3])
     p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
     p.add_argument("-out", default=None)
+    p.add_argument("-publish", action="store_true", help="run nothing; write the tables into results/")
     a = p.parse_args()
     label = "breakN" + iceCases.get_entry(os.path.join(CASE, "constant", "iceProperties"), "bondFamilies.ice.breakN")
     a.out = a.out or os.path.join(CASE, "runs", "seedScatter_" + label)
     os.makedirs(a.out, exist_ok=True)
     jobs = sorted(((d, s) for d in a.thickness for s in a.seeds), key=lambda j: -float(j[0]))
-    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-        cases = {job: pool.submit(run_one, a.out, *job) for job in jobs}
-        runs = {job: iceCases.summary(f.result()) for job, f in cases.items()}
+    if a.publish:
+        missing = [os.path.join(a.out, f"D{d}_seed{s}") for d, s in jobs
+                   if not iceCases.finished(os.path.join(a.out, f"D{d}_seed{s}"))]
+        if missing:
+            sys.exit("seedScatter: not published: not finished: " + ", ".join(missing))
+        runs = {(d, s): iceCases.summary(os.path.join(a.out, f"D{d}_seed{s}")) for d, s in jobs}
+    else:
+        with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+            cases = {job: pool.submit(run_one, a.out, *job) for job in jobs}
+            runs = {job: iceCases.summary(f.result()) for job, f in cases.items()}
 
     head = ["thickness_m", "seed", "particles", "failure_force_N", "sigma_f_kPa", "target_kPa", "error",
             "KE_over_elastic_at_peak", "steps", "wall_s"]
@@ -68,7 +77,7 @@ def main():
         worst = max((s["strength_error"] for s in group), key=abs)
         md.append(f"| {float(d):.2f} | {len(group)} | {mean / 1e3:.1f} | {std / 1e3:.1f} | {target / 1e3:.0f} | "
                   f"{mean / target - 1:+.1%} | {worst:+.1%} |")
-    results = os.path.join(CASE, "results")
+    results = os.path.join(CASE, "results") if a.publish else a.out
     os.makedirs(results, exist_ok=True)
     iceCases.write_atomically(os.path.join(results, f"seedScatter_{label}.csv"),
                               "\n".join(",".join(r) for r in [head] + rows) + "\n")
