@@ -66,7 +66,8 @@ particleFluidCoupling::particleFluidCoupling
     totalDrag_(Zero),
     totalPressureForce_(Zero),
     totalAddedMass_(Zero),
-    clampedCells_(0)
+    clampedCells_(0),
+    lowestReported_(GREAT)
 {
     if (addedMassCoefficient_ < 0)
     {
@@ -168,12 +169,15 @@ void particleFluidCoupling::updateFluidFraction
         Us[celli] = solid[celli] > 0 ? solidMomentum[celli]/solid[celli] : Zero;
     }
     clampedCells_ = returnReduce(clamped, sumOp<label>());
-    if (clampedCells_ > 0)
+    lowest = returnReduce(lowest, minOp<scalar>());
+    if (clampedCells_ > 0 && lowest < lowestReported_)
     {
         WarningInFunction
-            << "fluid fraction below alphaMin = " << alphaMin_ << " (lowest "
-            << returnReduce(lowest, minOp<scalar>()) << ") in " << clampedCells_
-            << " cells at time " << mesh_.time().timeName() << "; clamped to alphaMin" << endl;
+            << "fluid fraction below alphaMin = " << alphaMin_ << " (lowest " << lowest << ") in "
+            << clampedCells_ << " cells at time " << mesh_.time().timeName()
+            << "; clamped to alphaMin. Warned again only when it goes lower; every coupling step's "
+            << "count is the clampedCells column of the particle output" << endl;
+        lowestReported_ = lowest;
     }
     alpha_.correctBoundaryConditions();
     Us_.correctBoundaryConditions();

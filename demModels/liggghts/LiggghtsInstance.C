@@ -6,11 +6,14 @@
 #include "fix.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <deque>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
+#include <streambuf>
+#include <string>
 #include <vector>
 
 namespace iceDEM
@@ -22,6 +25,89 @@ namespace
 std::string watchedLog;
 bool finishedNormally = false;
 
+//- LIGGGHTS registers its granular model styles in a process-wide table
+//  whenever a granular pair style is made, and writes one "Style collision"
+//  warning to std::cerr for every entry already there: some 240 lines each
+//  time a scene starts a second LIGGGHTS in one process (ridge: assembly,
+//  then loading). They are harmless and drown real warnings, so this buffer
+//  drops exactly those lines and passes everything else through.
+class DuplicateStyleWarningFilter : public std::streambuf
+{
+public:
+    explicit DuplicateStyleWarningFilter(std::streambuf* target) : target_(target) {}
+
+    //- Puts the filter in front of std::cerr once per process. Never removed:
+    //  LIGGGHTS instances overlap (the next made before the last is gone).
+    static void install()
+    {
+        static DuplicateStyleWarningFilter* filter = nullptr;
+        if (!filter)
+        {
+            filter = new DuplicateStyleWarningFilter(std::cerr.rdbuf());
+            std::cerr.rdbuf(filter);
+        }
+    }
+
+protected:
+    int overflow(int c) override
+    {
+        if (c == traits_type::eof())
+        {
+            return traits_type::not_eof(c);
+        }
+        line_.push_back(static_cast<char>(c));
+        if (c == '\n')
+        {
+            flushLine();
+        }
+        return c;
+    }
+
+    int sync() override
+    {
+        // A partial line waits for its end only while it may still become one
+        // of the dropped warnings (a message without a newline is not held).
+        if (!mayBeDuplicateStyleWarning(line_))
+        {
+            forward();
+        }
+        return target_->pubsync();
+    }
+
+private:
+    static bool mayBeDuplicateStyleWarning(const std::string& text)
+    {
+        for (const std::string warning : {"WARNING! Style collision detected!",
+                                          "WARNING! VariantSelector collision detected!"})
+        {
+            const std::size_t n = std::min(text.size(), warning.size());
+            if (text.compare(0, n, warning, 0, n) == 0)
+            {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    void flushLine()
+    {
+        if (!mayBeDuplicateStyleWarning(line_))
+        {
+            forward();
+        }
+        line_.clear();
+    }
+
+    void forward()
+    {
+        target_->sputn(line_.data(), static_cast<std::streamsize>(line_.size()));
+        line_.clear();
+    }
+
+    std::streambuf* target_;
+    std::string line_;
+};
+
 } // namespace
 
 
@@ -30,6 +116,7 @@ LiggghtsInstance::LiggghtsInstance(MPI_Comm comm, const std::string& logFile)
     comm_(comm),
     lmp_(nullptr)
 {
+    DuplicateStyleWarningFilter::install();
     std::vector<std::string> args{"liggghts", "-screen", "/dev/null", "-log", logFile, "-echo", "none"};
     std::vector<char*> argv;
     for (std::string& a : args)
