@@ -182,6 +182,20 @@ def run_app(app, case, ranks=1, args=(), log_name="log.run"):
     return time.time() - start
 
 
+def kill_after_new_checkpoint(app, case, args, checkpoint, log_name, delay=0.0):
+    """Runs app on one rank (no mpirun) and SIGKILLs it `delay` s after `checkpoint` has been written
+    anew (a newer file than at the start); a fault test's kill. Returns when the process is gone."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    before = os.path.getmtime(checkpoint) if os.path.exists(checkpoint) else None
+    with open(os.path.join(case, log_name), "w") as log:
+        run = subprocess.Popen([app, "-case", case, *map(str, args)], stdout=log, stderr=subprocess.STDOUT, env=env)
+        while run.poll() is None and (not os.path.exists(checkpoint) or os.path.getmtime(checkpoint) == before):
+            time.sleep(0.005)
+        time.sleep(delay)
+        run.kill()
+        run.wait()
+
+
 def finished(case):
     """Whether the case holds a finished run's result set: a summary.json that does not say
     "complete": false (a run in the making, killed or stopped by an error)."""

@@ -26,7 +26,6 @@ import math
 import os
 import subprocess
 import sys
-import time
 import xml.etree.ElementTree as ET
 
 import h5py
@@ -134,14 +133,7 @@ def resume(work, bin_dir):
     iceCases.run_app(app, whole, 1, ["-stage", "all"], "log.ridgeDEM")
     killed = ridge_case("rubblePunch", os.path.join(work, "resume", "killed"), work, controls, PUNCH_ENTRIES)
     checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    with open(os.path.join(killed, "log.ridgeDEM.1"), "w") as log:
-        run = subprocess.Popen([app, "-case", killed, "-stage", "all"], stdout=log, stderr=subprocess.STDOUT,
-                               env=env)
-        while run.poll() is None and not os.path.exists(checkpoint):
-            time.sleep(0.05)
-        run.kill()
-        run.wait()
+    iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "all"], checkpoint, "log.ridgeDEM.1")
     finished = iceCases.finished(killed)
     check(os.path.exists(checkpoint) and not finished,
           "the run was killed part-way, after writing a checkpoint" if not finished
@@ -333,7 +325,6 @@ def bad_input(work, bin_dir):
 
 def faults(work, bin_dir):
     import random
-    import signal
     controls = (("maxTravel", 0.012), ("writeInterval", 0.004), ("checkpointInterval", 0.0015),
                 ("stopAfterHalfLoad", "no"))
     app = os.path.join(bin_dir, "ridgeDEM")
@@ -341,22 +332,12 @@ def faults(work, bin_dir):
     iceCases.run_app(app, whole, 1, ["-stage", "all"], "log.ridgeDEM")
     killed = ridge_case("rubblePunch", os.path.join(work, "faults", "killed"), work, controls, PUNCH_ENTRIES)
     checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
     kills = []
     for attempt in range(3):
-        args = ["-stage", "all"] + (["-resume"] if attempt else [])
-        before = os.path.getmtime(checkpoint) if os.path.exists(checkpoint) else None
-        with open(os.path.join(killed, f"log.ridgeDEM.{attempt}"), "w") as log:
-            run = subprocess.Popen([app, "-case", killed] + args, stdout=log, stderr=subprocess.STDOUT, env=env)
-            # a newer checkpoint than the one this attempt started from, then a random moment
-            while run.poll() is None and (not os.path.exists(checkpoint) or os.path.getmtime(checkpoint) == before):
-                time.sleep(0.01)
-            delay = pick.uniform(0.0, 0.6)
-            time.sleep(delay)
-            run.send_signal(signal.SIGKILL)
-            run.wait()
-        kills.append(delay)
+        kills.append(pick.uniform(0.0, 0.6))
+        iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "all"] + (["-resume"] if attempt else []),
+                                           checkpoint, f"log.ridgeDEM.{attempt}", kills[-1])
     check(not iceCases.finished(killed),
           f"killed three times, each {', '.join(f'{d:.2f}' for d in kills)} s after a new checkpoint, "
           "before the run could finish")

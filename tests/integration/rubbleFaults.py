@@ -7,10 +7,7 @@ position, velocity and spin and every bond's history in DEM/settled.h5, and the 
 usage: rubbleFaults.py CASE WORKDIR APP"""
 import os
 import random
-import signal
-import subprocess
 import sys
-import time
 
 import h5py
 import numpy as np
@@ -38,20 +35,12 @@ iceCases.run_app(app, whole, 1, ["-stage", "settle"], "log.settle")
 
 killed = small("killed")
 checkpoint = os.path.join(killed, "DEM", "settling.checkpoint.h5")
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
 delays = []
 for attempt in range(3):
-    before = os.path.getmtime(checkpoint) if os.path.exists(checkpoint) else None
-    args = ["-stage", "settle"] + (["-resume"] if attempt else [])
-    with open(os.path.join(killed, f"log.settle.{attempt}"), "w") as log:
-        run = subprocess.Popen([app, "-case", killed] + args, stdout=log, stderr=subprocess.STDOUT, env=env)
-        while run.poll() is None and (not os.path.exists(checkpoint) or os.path.getmtime(checkpoint) == before):
-            time.sleep(0.005)
-        delays.append(pick.uniform(0.0, 0.2))
-        time.sleep(delays[-1])
-        run.send_signal(signal.SIGKILL)
-        run.wait()
+    delays.append(pick.uniform(0.0, 0.2))
+    iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "settle"] + (["-resume"] if attempt else []),
+                                       checkpoint, f"log.settle.{attempt}", delays[-1])
 settled = os.path.join(killed, "DEM", "settled.h5")
 check(not os.path.exists(settled),
       f"killed three times, {', '.join(f'{d:.3f}' for d in delays)} s after a new checkpoint each, before it settled")
