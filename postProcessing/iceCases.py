@@ -240,15 +240,16 @@ def write_atomically(path, text):
 
 
 def publish_files(sources, folder):
-    """A study's --publish: copies its output files (text) into the committed folder, each
-    atomically; exits naming the missing ones, having copied none, unless all exist."""
+    """A study's --publish: copies its output files (text or images) into the committed folder,
+    each atomically; exits naming the missing ones, having copied none, unless all exist."""
     missing = [src for src in sources if not os.path.isfile(src)]
-    if missing:
-        sys.exit("not published: missing (run the study first): " + ", ".join(missing))
+    if missing or not sources:
+        sys.exit("not published: missing (run the study first): " + (", ".join(missing) or "every output"))
     os.makedirs(folder, exist_ok=True)
     for src in sources:
         target = os.path.join(folder, os.path.basename(src))
-        write_atomically(target, open(src).read())
+        shutil.copyfile(src, target + ".tmp")
+        os.replace(target + ".tmp", target)
         print("published", target)
 
 

@@ -6,13 +6,13 @@ beta), each on two random packings (seeds 1 and 2) as the reference study did.
     ./parametricSweep.py [-jobs 2] [-particles 1200] [-platenSpeed 0.2] [-seeds 1 2]
 
 Resumable: a run whose summary.json exists is not repeated. Writes
-parametricSweep/results.csv and parametricSweep/parametricSweep.png, the
+(into -out, default ../runs/parametricSweep; -publish copies them into studies/parametricSweep/)
+results.csv and parametricSweep.png, the
 reference values next to ours for the four trends (modulus raises the slope;
 distFactor; peak proportional to breakN; damping raises residual strength)."""
 import argparse
 import concurrent.futures
 import csv
-import math
 import os
 import sys
 
@@ -113,8 +113,14 @@ def main():
     p.add_argument("-particles", type=iceCases.whole_text(20), default="1200")
     p.add_argument("-platenSpeed", type=iceCases.positive_text, default="0.2")
     p.add_argument("-seeds", nargs="+", type=iceCases.whole_number(0), default=[1, 2])
-    p.add_argument("-out", default=os.path.join(here, "parametricSweep"))
+    p.add_argument("-out", default=os.path.join(here, "..", "runs", "parametricSweep"))
+    p.add_argument("-publish", action="store_true",
+                   help="run nothing; copy the results in -out into the committed studies/parametricSweep/")
     a = p.parse_args()
+    if a.publish:
+        iceCases.publish_files([os.path.join(a.out, f) for f in ("results.csv", "parametricSweep.png")],
+                               os.path.join(here, "parametricSweep"))
+        return
     refs = reference_runs()
     os.makedirs(a.out, exist_ok=True)
     tasks = [(r, seed) for r in refs for seed in a.seeds]

@@ -8,7 +8,8 @@ reports the first (centre-crack) peak, the highest load and their ratio.
                          [-variants base mu0.1 ...]
 
 Resumable: a run whose summary.json exists is not repeated. Writes
-secondPeakStudy/results.csv and results.md (mean over the seeds per variant)."""
+(into -out, default ../runs/secondPeakStudy; -publish copies them into studies/secondPeakStudy/)
+results.csv and results.md (mean over the seeds per variant)."""
 import argparse
 import concurrent.futures
 import csv
@@ -61,12 +62,19 @@ def main():
     parser.add_argument("-seeds", nargs="+", type=iceCases.whole_text(0), default=["1", "2"])
     parser.add_argument("-jobs", type=iceCases.whole_number(1), default=1)
     parser.add_argument("-variants", nargs="+", default=list(VARIANTS))
+    parser.add_argument("-out", default=os.path.join(here, "..", "runs", "secondPeakStudy"))
+    parser.add_argument("-publish", action="store_true",
+                        help="run nothing; copy the results in -out into the committed studies/secondPeakStudy/")
     args = parser.parse_args()
+    if args.publish:
+        iceCases.publish_files([os.path.join(args.out, f) for f in ("results.csv", "results.md")],
+                               os.path.join(here, "secondPeakStudy"))
+        return
     unknown = [v for v in args.variants if v not in VARIANTS]
     if unknown:
         sys.exit(f"secondPeakStudy: unknown variant(s) {unknown}; allowed: {list(VARIANTS)}")
 
-    out = os.path.join(here, "secondPeakStudy")
+    out = args.out
     os.makedirs(out, exist_ok=True)
     work = [(v, s) for v in args.variants for s in args.seeds]
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:

@@ -10,7 +10,7 @@ the reference, and charts wall time against error.
 
 Resumable; the results and charts cover every run in the output folder, so
 particle counts can be added by later invocations (e.g. 13,000 particles on 2
-ranks at fewer speeds). Writes speedStudy/results.csv, speedStudy/speedStudy.png
+ranks at fewer speeds). Writes (into -out, default ../runs/speedStudy; -publish copies them into studies/speedStudy/) results.csv, speedStudy/speedStudy.png
 and speedStudy/forceCurves_<N>.png."""
 import argparse
 import concurrent.futures
@@ -46,8 +46,15 @@ def main():
     p.add_argument("-speeds", nargs="+", type=iceCases.positive_text, default=["0.8", "0.4", "0.2", "0.1", "0.05"])
     p.add_argument("-ranks", type=iceCases.whole_number(1), default=1)
     p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
-    p.add_argument("-out", default=os.path.join(here, "speedStudy"))
+    p.add_argument("-out", default=os.path.join(here, "..", "runs", "speedStudy"))
+    p.add_argument("-publish", action="store_true",
+                   help="run nothing; copy the results in -out into the committed studies/speedStudy/")
     a = p.parse_args()
+    if a.publish:
+        outputs = ["results.csv", "speedStudy.png"] + sorted(
+            f for f in os.listdir(a.out) if f.startswith("forceCurves_")) if os.path.isdir(a.out) else []
+        iceCases.publish_files([os.path.join(a.out, f) for f in outputs], os.path.join(here, "speedStudy"))
+        return
     os.makedirs(a.out, exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         list(pool.map(lambda t: run_one(a.out, t[0], t[1], a.ranks),

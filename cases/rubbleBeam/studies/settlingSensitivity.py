@@ -32,11 +32,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--length", type=iceCases.positive_number, default=1.2)
     ap.add_argument("--np", type=iceCases.whole_number(1), default=1)
+    ap.add_argument("--out", default=os.path.join(HERE, "..", "runs", "settlingSensitivity"))
+    ap.add_argument("--publish", action="store_true",
+                    help="run nothing; copy the tables in --out into the committed studies/")
     a = ap.parse_args()
+    if a.publish:
+        iceCases.publish_files([os.path.join(a.out, f) for f in ("settlingSensitivity.csv", "settlingSensitivity.md")],
+                               HERE)
+        return
     case = os.path.dirname(HERE)
     rows = []
     for k, (name, modulus, alpha, seed) in enumerate(VARIANTS):
-        work = os.path.join(HERE, "settlingSensitivity", f"variant{k}")
+        work = os.path.join(a.out, f"variant{k}")
         done = os.path.join(work, "postProcessing", "summary.json")
         if not os.path.exists(done):     # resumable: finished variants are kept
             iceCases.copy_case(case, work)
@@ -54,13 +61,13 @@ def main():
         f"{n},{s['settled_time_s']:.2f},{s['at_rest']},{s['thickness_m']:.3f},{s['porosity']:.3f},"
         f"{s['ice_volume_above_water_fraction']:.4f},{s['freeze_bonds']},{s['steps']},{s['wall_s']:.0f}"
         for n, s in rows]
-    iceCases.write_atomically(os.path.join(HERE, "settlingSensitivity.csv"), "\n".join(lines) + "\n")
+    iceCases.write_atomically(os.path.join(a.out, "settlingSensitivity.csv"), "\n".join(lines) + "\n")
     md = ["| variant | settled after (s) | thickness (m) | porosity | ice above water | freeze-bonds | wall (s) |",
           "|---|---|---|---|---|---|---|"]
     md += [f"| {n} | {s['settled_time_s']:.1f} | {s['thickness_m']:.3f} | {s['porosity']:.3f} | "
            f"{100 * s['ice_volume_above_water_fraction']:.2f} % | {s['freeze_bonds']} | {s['wall_s']:.0f} |"
            for n, s in rows]
-    iceCases.write_atomically(os.path.join(HERE, "settlingSensitivity.md"), "\n".join(md) + "\n")
+    iceCases.write_atomically(os.path.join(a.out, "settlingSensitivity.md"), "\n".join(md) + "\n")
     print("\n".join(md))
 
 

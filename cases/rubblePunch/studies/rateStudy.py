@@ -20,11 +20,17 @@ import iceCases  # noqa: E402
 from ridgeSmall import build_keel, keel_file, ridge_case  # noqa: E402
 
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-parser.add_argument("-work", default="/tmp/rubblePunchRate")
+parser.add_argument("-work", default=os.path.join(HERE, "..", "runs", "rateStudy"),
+                    help="the runs and rateStudy.csv (default ../runs/rateStudy)")
+parser.add_argument("-publish", action="store_true",
+                    help="run nothing; copy -work's rateStudy.csv into the committed studies/")
 parser.add_argument("-bin", default=os.path.join(TOP, "build", "demModels"))
 parser.add_argument("-speeds", type=iceCases.positive_number, nargs="+",
                     default=[0.05, 0.025, 0.0125, 0.005])
 args = parser.parse_args()
+if args.publish:
+    iceCases.publish_files([os.path.join(args.work, "rateStudy.csv")], HERE)
+    sys.exit(0)
 work = args.work
 bin_dir = os.path.abspath(args.bin)
 os.makedirs(work, exist_ok=True)
@@ -51,4 +57,4 @@ for v in args.speeds:
     at = [window_mean(c, d - 0.0025, d + 0.0025) for d in (0.01, 0.02, 0.03)]
     rows.append(",".join(f"{x:.4g}" for x in (v, c["force"].max(), *at, window_mean(c, 0.005, 0.03), wall)))
     print(rows[-1], flush=True)
-iceCases.write_atomically(os.path.join(HERE, "rateStudy.csv"), "\n".join(rows) + "\n")
+iceCases.write_atomically(os.path.join(work, "rateStudy.csv"), "\n".join(rows) + "\n")

@@ -7,7 +7,8 @@ and tabulates flexural strength against the targets.
                    [-speeds 0.1 0.05] [-quick] [-ranks 1] [-jobs 2] [-label NAME]
 
 Resumable (a run with a summary is not rerun); the tables cover every run in
-the output folder, so later invocations add rows. Writes calibration/results.csv
+the output folder, so later invocations add rows. Writes (into -out, default ../runs/calibration; -publish copies them into studies/calibration/)
+results.csv
 and calibration/results.md: per run the values set, thickness, speed, failure
 force, sigma_f, its error against the target, effective modulus, kinetic/elastic
 energy at the peak, particles, steps and wall time; and per parameter set and
@@ -87,8 +88,14 @@ def main():
     p.add_argument("-quick", action="store_true")
     p.add_argument("-ranks", type=iceCases.whole_number(1), default=1)
     p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
-    p.add_argument("-out", default=os.path.join(here, "calibration"))
+    p.add_argument("-out", default=os.path.join(here, "..", "runs", "calibration"))
+    p.add_argument("-publish", action="store_true",
+                   help="run nothing; copy the results in -out into the committed studies/calibration/")
     a = p.parse_args()
+    if a.publish:
+        iceCases.publish_files([os.path.join(a.out, f) for f in ("results.csv", "results.md")],
+                               os.path.join(here, "calibration"))
+        return
     os.makedirs(a.out, exist_ok=True)
     axes = [[(s[0], v) for v in s[1:]] for s in a.set]
     jobs = [(d, v, combo) for combo in itertools.product(*axes) for v in a.speeds for d in a.thickness]
