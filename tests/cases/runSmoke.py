@@ -22,34 +22,14 @@ import glob
 import hashlib
 import os
 import re
-import shutil
 import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+from caseMirror import case_files, make_mirror  # noqa: E402,F401 (case_files: for allrunOptions.py)
+
 NAN = re.compile(rb"(?<![A-Za-z_])[-+]?nan(?![A-Za-z_])", re.I)
-
-
-def case_files(top, folder):
-    """Paths (relative to top) of a folder's files that git tracks or would add; all files without git."""
-    try:
-        out = subprocess.run(["git", "-C", top, "ls-files", "-z", "--cached", "--others", "--exclude-standard",
-                              "--", folder], check=True, capture_output=True).stdout
-        return [p for p in out.decode().split("\0") if p and os.path.isfile(os.path.join(top, p))]
-    except (OSError, subprocess.CalledProcessError):
-        return [os.path.relpath(os.path.join(d, f), top)
-                for d, _, files in os.walk(os.path.join(top, folder)) for f in files]
-
-
-def copy_folder(top, folder, mirror):
-    """Copies the folder's files into the mirror; returns their paths there."""
-    copied = []
-    for rel in case_files(top, folder):
-        dest = os.path.join(mirror, rel)
-        os.makedirs(os.path.dirname(dest), exist_ok=True)
-        shutil.copy2(os.path.join(top, rel), dest)
-        copied.append(dest)
-    return copied
 
 
 def digest(path):
@@ -90,15 +70,8 @@ def main():
     a = ap.parse_args()
     name = a.case
     mirror = os.path.join(a.work, a.name or name)
-    shutil.rmtree(mirror, ignore_errors=True)
-    copied = []
-    for folder in [name, "common", *a.others]:
-        if os.path.isdir(os.path.join(a.source, "cases", folder)):
-            copied += copy_folder(a.source, os.path.join("cases", folder), mirror)
+    case, copied = make_mirror(a.source, a.build, a.work, name, a.name, a.others)
     before = {path: digest(path) for path in copied}
-    for link, target in (("build", a.build), ("postProcessing", "postProcessing"), ("bin", "bin"), ("tests", "tests")):
-        os.symlink(os.path.join(a.source, target), os.path.join(mirror, link))
-    case = os.path.join(mirror, "cases", name)
     allrun = os.path.join(case, "Allrun")
     if not os.access(allrun, os.X_OK):
         sys.exit(f"smoke {name}: cases/{name}/Allrun missing or not executable")
