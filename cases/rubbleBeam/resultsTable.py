@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Writes the README's results table from the published summaries (results/summary_<shape>.json),
+between the README's `<!-- results table -->` and `<!-- end results table -->` lines, so that the
+figures a reader sees are the committed run's, never typed. `./Allrun -publish` calls it.
+
+usage: resultsTable.py [CASE_DIR]"""
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+
+SHAPES = ("cuboid", "empirical")
+START, END = "<!-- results table -->", "<!-- end results table -->"
+
+
+def minutes(seconds):
+    m, s = divmod(int(round(seconds)), 60)
+    return f"{m} min {s} s" if m else f"{s} s"
+
+
+ROWS = [
+    ("blocks / particles", lambda s: f"{s['blocks']} / {s['particles']:,}"),
+    ("block ice volume", lambda s: f"{s['block_ice_volume_m3']:.3f} m3"),
+    ("settled after (simulated)", lambda s: f"{s['settled_time_s']:.1f} s" + ("" if s["at_rest"] else " (NOT at rest)")),
+    ("layer (1st-99th percentile of sphere extents)",
+     lambda s: f"{s['layer_bottom_m']:.3f}-{s['layer_top_m']:.3f} m, **{s['thickness_m']:.3f} m thick**"),
+    ("porosity (block volume)", lambda s: f"**{s['porosity']:.3f}**"),
+    ("ice volume above water", lambda s: f"{100 * s['ice_volume_above_water_fraction']:.2f} %"),
+    ("freeze-bonds / block contacts",
+     lambda s: f"{s['freeze_bonds']} / {s['block_contacts']}, {s['mean_bonds_per_block_contact']:.1f} per contact"),
+    ("confinement on the real area",
+     lambda s: f"{s['confinement_mean_Pa'] / 1e3:.2f} kPa mean, {s['confinement_max_Pa'] / 1e3:.1f} kPa max"),
+    ("c_f (heat balance)", lambda s: f"{s['area_correction']:.3f}"),
+    ("freeze-bond strength on the bond area",
+     lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"),
+    ("wall time, build + settle + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
+]
+
+
+def table(case):
+    summaries = {}
+    for shape in SHAPES:
+        path = os.path.join(case, "results", f"summary_{shape}.json")
+        if os.path.exists(path):
+            summaries[shape] = json.load(open(path))
+    if not summaries:
+        sys.exit(f"resultsTable.py: no results/summary_<shape>.json in {case}")
+    shapes = [s for s in SHAPES if s in summaries]
+    lines = ["| | " + " | ".join(shapes) + " |", "|---|" + "---|" * len(shapes)]
+    for label, cell in ROWS:
+        lines.append(f"| {label} | " + " | ".join(cell(summaries[s]) for s in shapes) + " |")
+    return "\n".join(lines)
+
+
+def main():
+    case = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__)))
+    readme = os.path.join(case, "README.md")
+    text = open(readme).read()
+    if START not in text or END not in text:
+        sys.exit(f"resultsTable.py: {readme} has no '{START}' ... '{END}' block")
+    head, rest = text.split(START, 1)
+    _, tail = rest.split(END, 1)
+    iceCases.write_atomically(readme, head + START + "\n" + table(case) + "\n" + END + tail)
+    print(f"resultsTable.py: {readme}'s results table written from results/summary_*.json")
+
+
+if __name__ == "__main__":
+    main()
