@@ -90,18 +90,10 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     s.layer.thickness = cl.getScalar("thickness");
     if (s.layer.thickness < 0.0) cl.fail("thickness", "must be 0 (a bare keel) or positive, in m");
     s.layer.particleDiameter = cl.getPositiveScalarOrDefault("particleDiameter", s.layer.particleDiameter);
-    s.layer.radiusSpread = cl.getScalarOrDefault("radiusSpread", 0.0);
-    if (s.layer.radiusSpread < 0.0 || s.layer.radiusSpread >= 0.9)
-    {
-        cl.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
-    }
-    s.layer.solidFraction = cl.getScalarOrDefault("solidFraction", 0.6);
-    if (s.layer.solidFraction <= 0.0 || s.layer.solidFraction > randomClosePackingFraction)
-    {
-        cl.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
-                "denser than random close packing (0.64)");
-    }
-    s.layer.seed = static_cast<unsigned>(cl.getLabelOrDefault("seed", 1));
+    const RandomPackingChoice choice = RandomPackingChoice::read(cl);
+    s.layer.radiusSpread = choice.radiusSpread;
+    s.layer.solidFraction = choice.solidFraction;
+    s.layer.seed = choice.seed;
     if (s.layer.thickness > 0.0 && s.layer.thickness < 1.25 * s.layer.particleDiameter)
     {
         cl.fail("thickness", "a layer thinner than 1.25 particle diameters cannot bend; "
@@ -377,6 +369,8 @@ void RidgeScene::assemble()
             "'" + settings_.keelFile + "' does not exist: build the keel first (its rubble case's "
             "./Allrun, or rubbleDEM -stage settle)");
     }
+    // Read once at the start: an edit during the assembly is not what made the ridge.
+    const Provenance inputs = assemblyInputs();
     const SavedRubble keel = SavedRubble::read(settings_.keelFile, SavedRubble::settledRubble);
     requireInsideBox(keel);
     const RidgeLayout layout = assembleRidge(keel.particles, settings_.layer, settings_.trimDepth);
@@ -500,7 +494,7 @@ void RidgeScene::assemble()
     }
     ridge.time = 0.0;
     ridge.waterLevel = waterParameters.surfaceLevel;
-    ridge.provenance = assemblyInputs().text();
+    ridge.provenance = inputs.text();
     ridge.kind = SavedRubble::ridge;
     ridge.description = "ridge assembled by ridgeDEM from " + settings_.keelFile + ": keel trimmed by "
         + formatNumber(settings_.trimDepth) + " m, consolidated layer " + formatNumber(settings_.layer.thickness)

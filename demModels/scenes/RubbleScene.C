@@ -313,7 +313,7 @@ void RubbleScene::writeSettlingCheckpoint(double t)
     const std::string restartName = "settling.restart." + std::to_string(lmp_->step());
     lmp_->command("write_restart " + dir + "/settling.restart.tmp");
     SavedRubble state = gatherState(t);
-    state.provenance = settlingInputs().text();
+    state.provenance = settlingInputs_.text();
     state.kind = SavedRubble::settlingCheckpoint;
     state.restart = restartName;
     if (context_.rank() == 0)
@@ -340,7 +340,7 @@ void RubbleScene::writeSettlingCheckpoint(double t)
 }
 
 
-Provenance RubbleScene::settlingInputs() const
+Provenance RubbleScene::readSettlingInputs() const
 {
     Provenance p;
     p.add("stage", "rubbleDEM settle");
@@ -359,11 +359,11 @@ Provenance RubbleScene::settlingInputs() const
 }
 
 
-Provenance RubbleScene::bondingInputs() const
+Provenance RubbleScene::readBondingInputs() const
 {
     Provenance p;
     p.add("stage", "rubbleDEM bond");
-    p.addStage("DEM/settled.h5", settlingInputs());
+    p.addStage("DEM/settled.h5", settlingInputs_);
     p.addDictionaryFile("constant/freezeBondProperties", context_.path("constant/freezeBondProperties"));
     const Dictionary rubble = Dictionary::readFile(context_.path("constant/rubbleProperties"));
     p.addDictionary("constant/rubbleProperties", rubble.subDict("ends"));
@@ -451,7 +451,7 @@ void RubbleScene::settle()
     if (settings_.resume && std::filesystem::exists(checkpoint))
     {
         const SavedRubble saved = SavedRubble::read(checkpoint, SavedRubble::settlingCheckpoint);
-        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), checkpoint,
+        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs_, checkpoint,
             "rubbleDEM -case " + settings_.caseDir + " -stage settle (without -resume)");
         const std::string restart = context_.path("DEM/" + saved.restart);
         if (saved.restart.empty() || !std::filesystem::exists(restart))
@@ -530,7 +530,7 @@ void RubbleScene::settle()
         << 100*layer_.volumeAboveWater << " % of the ice above water, freeboard " << layer_.freeboard << " m";
     context_.log(msg.str());
     SavedRubble state = gatherState(t);
-    state.provenance = settlingInputs().text();
+    state.provenance = settlingInputs_.text();
     state.kind = SavedRubble::settledRubble;
     if (context_.rank() == 0)
     {
@@ -597,7 +597,7 @@ void RubbleScene::freezeBond()
 void RubbleScene::writeSummary(double wallSeconds) const
 {
     SavedRubble state = gatherState(layer_.time);
-    state.provenance = bondingInputs().text();
+    state.provenance = bondingInputs_.text();
     state.kind = SavedRubble::bondedRubble;
     if (context_.rank() != 0)
     {
@@ -675,8 +675,8 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["dt"] = dt_;
     j["ranks"] = long(context_.ranks());
     j["settling_wall_s"] = settleWall_;
-    j["settled_inputs_fingerprint"] = settlingInputs().fingerprint();
-    j["inputs_fingerprint"] = bondingInputs().fingerprint();
+    j["settled_inputs_fingerprint"] = settlingInputs_.fingerprint();
+    j["inputs_fingerprint"] = bondingInputs_.fingerprint();
     j["wall_s"] = wallSeconds;
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
@@ -687,6 +687,8 @@ void RubbleScene::run()
     const auto start = std::chrono::steady_clock::now();
     context_.log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
         + std::to_string(context_.ranks()) + " rank(s)");
+    settlingInputs_ = readSettlingInputs();
+    bondingInputs_ = readBondingInputs();
     buildBlocks();
     if (settings_.stage == "bond")
     {
@@ -696,7 +698,7 @@ void RubbleScene::run()
             throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
         }
         const SavedRubble saved = SavedRubble::read(settled, SavedRubble::settledRubble);
-        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs(), settled,
+        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs_, settled,
             "rubbleDEM -case " + settings_.caseDir + " -stage settle");
         startLiggghts(&saved, true);
         layer_ = measureLayer(saved.time, totalKineticEnergy(*lmp_)/double(blockOfTag_.size()), true);

@@ -145,18 +145,10 @@ ThreePointBendingSettings ThreePointBendingSettings::read
         packing.fail(options.quick ? "quickParticleDiameter" : "particleDiameter",
                      formatNumber(s.particleDiameter) + " m does not fit in a beam " + formatNumber(s.thickness) + " m thick");
     }
-    s.radiusSpread = packing.getScalarOrDefault("radiusSpread", 0.0);
-    if (s.radiusSpread < 0.0 || s.radiusSpread >= 0.9)
-    {
-        packing.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
-    }
-    s.solidFraction = packing.getScalarOrDefault("solidFraction", 0.6);
-    if (s.solidFraction <= 0.0 || s.solidFraction > randomClosePackingFraction)
-    {
-        packing.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
-                     "denser than random close packing (0.64)");
-    }
-    s.seed = static_cast<unsigned>(packing.getLabelOrDefault("seed", 1));
+    const RandomPackingChoice choice = RandomPackingChoice::read(packing);
+    s.radiusSpread = choice.radiusSpread;
+    s.solidFraction = choice.solidFraction;
+    s.seed = choice.seed;
 
     const Dictionary& target = props.subDict("targetStrength");
     target.checkKeys({"coefficient", "exponent"});

@@ -1,5 +1,7 @@
 #include "RandomPacking.H"
 
+#include "Dictionary.H"
+
 #include "CellGrid.H"
 
 #include <algorithm>
@@ -375,6 +377,25 @@ RandomPackingStats measure(const Packing& packing, const RandomPackingSpec& spec
 }
 
 } // namespace
+
+
+RandomPackingChoice RandomPackingChoice::read(const Dictionary& d)
+{
+    RandomPackingChoice c;
+    c.radiusSpread = d.getScalarOrDefault("radiusSpread", c.radiusSpread);
+    if (c.radiusSpread < 0.0 || c.radiusSpread >= 0.9)
+    {
+        d.fail("radiusSpread", "expected a relative half-width in [0, 0.9)");
+    }
+    c.solidFraction = d.getScalarOrDefault("solidFraction", c.solidFraction);
+    if (c.solidFraction <= 0.0 || c.solidFraction > randomClosePackingFraction)
+    {
+        d.fail("solidFraction", "expected a solid fraction in (0, 0.64]: a random packing cannot be "
+               "denser than random close packing (0.64)");
+    }
+    c.seed = static_cast<unsigned>(d.getLabelOrDefault("seed", static_cast<int>(c.seed)));
+    return c;
+}
 
 
 std::vector<ParticleSpec> buildRandomPacking(const RandomPackingSpec& spec, RandomPackingStats& stats)
