@@ -239,6 +239,32 @@ def write_atomically(path, text):
     os.replace(tmp, path)
 
 
+def git_revision():
+    """The short revision of the checkout with a '+' if it has uncommitted changes ('unknown' outside git)."""
+    try:
+        rev = subprocess.run(["git", "-C", TOP, "rev-parse", "--short", "HEAD"], capture_output=True,
+                             text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", TOP, "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, check=True).stdout.strip()
+        return rev + ("+" if dirty else "")
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def write_readme_section(readme, name, text):
+    """Replaces the generated block `<!-- NAME -->` ... `<!-- end NAME -->` of a README with text,
+    so that the figures a reader sees are those of the published results, never typed.
+    Exits naming the README and the markers if the block is missing."""
+    start, end = f"<!-- {name} -->", f"<!-- end {name} -->"
+    content = open(readme).read()
+    if content.count(start) != 1 or content.count(end) != 1:
+        sys.exit(f"{readme}: needs one '{start}' ... '{end}' block for the generated {name}")
+    head, rest = content.split(start, 1)
+    _, tail = rest.split(end, 1)
+    write_atomically(readme, head + start + "\n" + text.rstrip("\n") + "\n" + end + tail)
+    print(f"{readme}: {name} written from the published results")
+
+
 def publish_files(sources, folder):
     """A study's --publish: copies its output files (text or images) into the committed folder,
     each atomically; exits naming the missing ones, having copied none, unless all exist."""

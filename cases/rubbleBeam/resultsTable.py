@@ -12,7 +12,6 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import iceCases  # noqa: E402
 
 SHAPES = ("cuboid", "empirical")
-START, END = "<!-- results table -->", "<!-- end results table -->"
 
 
 def minutes(seconds):
@@ -57,13 +56,7 @@ def table(case):
 def main():
     case = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__)))
     readme = os.path.join(case, "README.md")
-    text = open(readme).read()
-    if START not in text or END not in text:
-        sys.exit(f"resultsTable.py: {readme} has no '{START}' ... '{END}' block")
-    head, rest = text.split(START, 1)
-    _, tail = rest.split(END, 1)
-    iceCases.write_atomically(readme, head + START + "\n" + table(case) + "\n" + END + tail)
-    print(f"resultsTable.py: {readme}'s results table written from results/summary_*.json")
+    iceCases.write_readme_section(readme, "results table", table(case))
 
 
 if __name__ == "__main__":
