@@ -81,3 +81,36 @@ summary_value() {
     [ -f "$1/postProcessing/summary.json" ] || return 0
     sed -n 's/^ *"'"$2"'": "\{0,1\}\([^",]*\)"\{0,1\},\{0,1\}$/\1/p' "$1/postProcessing/summary.json" | head -1
 }
+
+# keel_file KEEL: the saved stage of the rubble case KEEL that a ridge reads as its
+# keel (keel.settledRubble): DEM/compacted.h5 where its rubbleProperties compacts
+# (compaction.method plates), else DEM/settled.h5.
+keel_file() {
+    if grep -Eq '^[[:space:]]*method[[:space:]]+plates[[:space:]]*;' "$1/constant/rubbleProperties"; then
+        echo "$1/DEM/compacted.h5"
+    else
+        echo "$1/DEM/settled.h5"
+    fi
+}
+
+# build_keel KEEL RESUME COMMAND...: the keel KEEL settled (COMMAND -case KEEL
+# -stage settle [RESUME], log KEEL/log.rubbleDEM) unless DEM/settled.h5 is there,
+# then compacted (-stage compact, log KEEL/log.compact) where it compacts, unless
+# DEM/compacted.h5 is there. COMMAND runs rubbleDEM (mpirun ... rubbleDEM);
+# RESUME is -resume or "".
+build_keel() {
+    local keel="$1" resume="$2"
+    shift 2
+    if [ ! -f "$keel/DEM/settled.h5" ]; then
+        echo "Settling the keel $keel (rubbleDEM -stage settle); log in $keel/log.rubbleDEM"
+        "$@" -case "$keel" -stage settle $resume > "$keel/log.rubbleDEM" 2>&1 \
+            || { tail -20 "$keel/log.rubbleDEM" >&2; return 1; }
+        grep -E "^(Settled|NOT at rest)" "$keel/log.rubbleDEM" || true
+    fi
+    if [ "$(keel_file "$keel")" = "$keel/DEM/compacted.h5" ] && [ ! -f "$keel/DEM/compacted.h5" ]; then
+        echo "Compacting the keel $keel (rubbleDEM -stage compact); log in $keel/log.compact"
+        "$@" -case "$keel" -stage compact > "$keel/log.compact" 2>&1 \
+            || { tail -20 "$keel/log.compact" >&2; return 1; }
+        grep "^Compacted" "$keel/log.compact" || true
+    fi
+}

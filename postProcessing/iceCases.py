@@ -98,6 +98,32 @@ def set_entry(path, dotted, value):
         open(path, "w").write(_with_override(text, dotted, value))
 
 
+def keel_file(keel):
+    """The saved stage of the rubble case `keel` that a ridge reads as its keel
+    (keel.settledRubble): DEM/compacted.h5 where it compacts, else DEM/settled.h5.
+    The same as keel_file in bin/caseCommon.sh."""
+    method = get_entry(os.path.join(keel, "constant", "rubbleProperties"), "compaction.method").strip()
+    return os.path.join(keel, "DEM", "compacted.h5" if method == "plates" else "settled.h5")
+
+
+def add_entry(path, dotted, value):
+    """Adds `a.b.key value;`, which the file must not have, to an OpenFOAM dictionary file."""
+    text = open(path).read()
+    try:
+        _entry_value_span(text, dotted, path)
+    except KeyError:
+        open(path, "w").write(_with_override(text, dotted, value))
+        return
+    raise KeyError(f"{dotted} is in {path} already")
+
+
+def uncompacted(path, porosity):
+    """A rubbleProperties (path) bonded where the heap settled, no compaction, with the ice of
+    a blocks.rubbleThickness layer at `porosity` rained in."""
+    set_entry(path, "compaction.method", "none")
+    add_entry(path, "blocks.expectedPorosity", porosity)
+
+
 def _with_override(text, dotted, value):
     """text with `a { b { key value; } }` added: into the deepest of a, a.b, ... that
     it has, otherwise before its closing `// ****` line (or at its end)."""

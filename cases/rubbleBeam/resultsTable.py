@@ -25,17 +25,34 @@ ROWS = [
     ("settled after (simulated)", lambda s: f"{s['settled_time_s']:.1f} s" + ("" if s["at_rest"] else " (NOT at rest)")),
     ("layer (1st-99th percentile of sphere extents)",
      lambda s: f"{s['layer_bottom_m']:.3f}-{s['layer_top_m']:.3f} m, **{s['thickness_m']:.3f} m thick**"),
-    ("porosity (block volume)", lambda s: f"**{s['porosity']:.3f}**"),
+    ("porosity as settled (block volume)", lambda s: f"**{s['porosity']:.3f}**"),
+    ("compaction: porosity between the plates", lambda s: compaction(s, lambda c:
+        f"{c['porosity_when_plates_touched']:.3f} -> **{c['porosity']:.3f}** (target {c['target_porosity']})")),
+    ("compaction: lid / floor pressure at bonding", lambda s: compaction(s, lambda c:
+        f"{c['lid_pressure_at_bonding_Pa'] / 1e3:.1f} / {c['floor_pressure_at_bonding_Pa'] / 1e3:.1f} kPa")),
+    ("released (bonded, plates gone): layer, porosity", lambda s: compaction(s, lambda c:
+        f"{s['released']['layer_bottom_m']:.3f}-{s['released']['layer_top_m']:.3f} m, "
+        f"{s['released']['thickness_m']:.3f} m thick, porosity {s['released']['porosity']:.3f}")),
     ("ice volume above water", lambda s: f"{100 * s['ice_volume_above_water_fraction']:.2f} %"),
     ("freeze-bonds / block contacts",
      lambda s: f"{s['freeze_bonds']} / {s['block_contacts']}, {s['mean_bonds_per_block_contact']:.1f} per contact"),
     ("confinement on the real area",
-     lambda s: f"{s['confinement_mean_Pa'] / 1e3:.2f} kPa mean, {s['confinement_max_Pa'] / 1e3:.1f} kPa max"),
+     lambda s: f"{s['confinement_mean_Pa'] / 1e3:.2f} kPa mean, {s['confinement_max_Pa'] / 1e3:.1f} kPa max"
+               + (", median {:.2f}, 90th percentile {:.1f} kPa".format(s["confinement_percentiles_Pa"]["p50"] / 1e3,
+                                                                   s["confinement_percentiles_Pa"]["p90"] / 1e3)
+                  if "confinement_percentiles_Pa" in s else "")),
+    ("block surface bonded (DEM bond area)",
+     lambda s: f"{100 * s['bonded_surface_fraction']:.2f} %" if "bonded_surface_fraction" in s else "-"),
     ("c_f (heat balance)", lambda s: f"{s['area_correction']:.3f}"),
     ("freeze-bond strength on the bond area",
      lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"),
-    ("wall time, build + settle + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
+    ("wall time, build + settle + compact + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
 ]
+
+
+def compaction(summary, cell):
+    c = summary.get("compaction", {"method": "none"})
+    return cell(c) if c["method"] != "none" else "none"
 
 
 def table(case):

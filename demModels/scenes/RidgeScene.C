@@ -1,4 +1,5 @@
 #include "RidgeScene.H"
+#include "CompactionPlates.H"
 #include "CommandLine.H"
 #include "Format.H"
 
@@ -371,7 +372,14 @@ void RidgeScene::assemble()
     }
     // Read once at the start: an edit during the assembly is not what made the ridge.
     const Provenance inputs = assemblyInputs();
-    const SavedRubble keel = SavedRubble::read(settings_.keelFile, SavedRubble::settledRubble);
+    const SavedRubble keel = SavedRubble::read(settings_.keelFile);
+    const bool compacted = keel.kind == SavedRubble::compactedRubble;
+    if (keel.kind != SavedRubble::settledRubble && !compacted)
+    {
+        throw InputError(settings_.keelFile, "kind", "holds " + (keel.kind.empty() ? std::string("no kind")
+            : "a " + keel.kind) + ", where a keel must be a settled or a compacted rubble (rubbleDEM -stage settle "
+            "or -stage compact)");
+    }
     requireInsideBox(keel);
     const RidgeLayout layout = assembleRidge(keel.particles, settings_.layer, settings_.trimDepth);
     layerFirstTag_ = layout.keelParticles + 1;
@@ -410,6 +418,18 @@ void RidgeScene::assemble()
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
+    if (compacted)
+    {
+        // The compaction's plates hold the keel while it is pressed, stiffened and
+        // bonded (scenes.md section 5: the freeze-bonds form under the compaction
+        // pressure); the ridge is saved without them.
+        plates_ = std::make_unique<CompactionPlates>
+        (
+            *lmp_, CompactionPlateLaw{contact_.normalStiffness, contact_.normalDamping}
+        );
+        plates_->define();
+        plates_->place(keel.plateBottom, keel.plateTop);
+    }
     bonds_ = IceBondForces::define(*lmp_, soft);
     waterForces_->defineAddedMassFix();
     lmp_->command("run 0");
@@ -444,6 +464,17 @@ void RidgeScene::assemble()
     if (settings_.stiffenTime > 0.0)
     {
         stiffenContacts(layout.particles);
+    }
+
+    if (plates_)
+    {
+        const PlateLoads loads = plates_->loads();
+        const double area = settings_.layer.length*settings_.layer.width;
+        std::ostringstream msg;
+        msg << "Compacted keel held between plates at z = " << plates_->bottom() << " and " << plates_->top()
+            << " m: " << loads.floor/area << " Pa on the floor plate, " << loads.lid/area << " Pa on the lid, "
+            << loads.touching << " spheres touching them, when the bonds are made";
+        context_.log(msg.str());
     }
 
     // Bonds at the pressed geometry: ice bonds within blocks and within the
@@ -520,6 +551,7 @@ void RidgeScene::assemble()
     context_.log(msg.str());
 
     bonds_.reset();
+    plates_.reset();
     waterForces_.reset();
     lmp_.reset();
 }

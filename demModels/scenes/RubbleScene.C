@@ -1,5 +1,8 @@
 #include "RubbleScene.H"
 #include "CommandLine.H"
+#include "CompactionPlateLaw.H"
+#include "CompactionPlates.H"
+#include "NamedEnum.H"
 
 #include "Percentile.H"
 
@@ -45,6 +48,11 @@ constexpr int mobileType = 1;
 constexpr int fixedType = 2;
 constexpr int wallType = 3;
 
+const NamedEnum<CompactionMethod> compactionMethodNames
+{{
+    {CompactionMethod::plates, "plates"},
+    {CompactionMethod::none, "none"},
+}};
 
 } // namespace
 
@@ -55,13 +63,13 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     std::string shapeOverride;
     CommandLine("rubbleDEM")
         .text("-case", "DIR", "the case directory (default .)", s.caseDir)
-        .choice("-stage", {"settle", "bond", "all"}, "which stage to run (default all)", s.stage)
+        .choice("-stage", {"settle", "compact", "bond", "all"}, "which stage to run (default all)", s.stage)
         .choice("-shape", {"cuboid", "empirical"}, "block shape instead of blocks.shape", shapeOverride)
         .flag("-resume", "settle: continue from the last checkpoint", s.resume)
         .parse(argc, argv);
     const std::string file = s.caseDir + "/constant/rubbleProperties";
     const Dictionary d = Dictionary::readFile(file);
-    d.checkKeys({"box", "blocks", "settling", "ends"});
+    d.checkKeys({"box", "blocks", "settling", "compaction", "ends"});
     const Dictionary& box = d.subDict("box");
     box.checkKeys({"length", "width", "height"});
     s.boxLength = box.getPositiveScalarOrDefault("length", s.boxLength);
@@ -99,8 +107,46 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     s.layers = b.getLabelOrDefault("layers", s.layers);
     if (s.layers < 1) b.fail("layers", "must be at least 1");
     s.rubbleThickness = b.getPositiveScalarOrDefault("rubbleThickness", s.rubbleThickness);
-    s.expectedPorosity = b.getScalarOrDefault("expectedPorosity", s.expectedPorosity);
-    if (!(s.expectedPorosity >= 0.0 && s.expectedPorosity < 0.9)) b.fail("expectedPorosity", "must lie in [0, 0.9)");
+    const Dictionary& c = d.subDict("compaction");
+    c.checkKeys({"method", "targetPorosity", "speed", "maxPressure", "frictionCoefficient", "holdTime", "holdPressure",
+                  "releaseTime"});
+    s.compaction = compactionMethodNames.get(c, "method");
+    if (s.compaction == CompactionMethod::plates)
+    {
+        s.targetPorosity = c.getScalar("targetPorosity");
+        if (!(s.targetPorosity >= 0.1 && s.targetPorosity < 0.9)) c.fail("targetPorosity", "must lie in [0.1, 0.9)");
+        s.compactionSpeed = c.getPositiveScalarOrDefault("speed", s.compactionSpeed);
+        s.maxCompactionPressure = c.getPositiveScalarOrDefault("maxPressure", s.maxCompactionPressure);
+        if (c.found("frictionCoefficient"))
+        {
+            s.compactionFriction = c.getScalar("frictionCoefficient");
+            if (!(s.compactionFriction >= 0.0)) c.fail("frictionCoefficient", "must not be negative");
+        }
+        s.holdTime = c.getScalarOrDefault("holdTime", s.holdTime);
+        if (!(s.holdTime >= 0.0)) c.fail("holdTime", "must not be negative");
+        s.holdPressure = c.getScalarOrDefault("holdPressure", s.holdPressure);
+        if (!(s.holdPressure >= 0.0 && s.holdPressure < s.maxCompactionPressure))
+        {
+            c.fail("holdPressure", "must lie in [0, maxPressure)");
+        }
+        s.releaseTime = c.getScalarOrDefault("releaseTime", s.releaseTime);
+        if (!(s.releaseTime >= 0.0)) c.fail("releaseTime", "must not be negative");
+        if (b.found("expectedPorosity"))
+        {
+            b.fail("expectedPorosity", "is for uncompacted rubble (compaction.method none): with plates the ice "
+                "rained in is that of a rubbleThickness layer at compaction.targetPorosity; remove this entry");
+        }
+        s.expectedPorosity = s.targetPorosity;
+    }
+    else
+    {
+        if (s.stage == "compact")
+        {
+            c.fail("method", "is none: there is no compact stage to run (plates compacts)");
+        }
+        s.expectedPorosity = b.getScalar("expectedPorosity");
+        if (!(s.expectedPorosity >= 0.0 && s.expectedPorosity < 0.9)) b.fail("expectedPorosity", "must lie in [0, 0.9)");
+    }
     s.seed = static_cast<unsigned>(b.getLabelOrDefault("seed", static_cast<int>(s.seed)));
 
     const Dictionary& st = d.subDict("settling");
@@ -159,6 +205,11 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     {
         settlingIce_.material.frictionCoefficient = settings_.settlingFriction;
     }
+    compactionIce_ = settlingIce_;
+    if (settings_.compactionFriction >= 0.0)
+    {
+        compactionIce_.material.frictionCoefficient = settings_.compactionFriction;
+    }
 }
 
 
@@ -199,7 +250,7 @@ void RubbleScene::buildBlocks()
 }
 
 
-void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const std::string& restart)
+void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const std::string& restart, bool withPlates)
 {
     const IceProperties& ice = settling ? settlingIce_ : ice_;
     const double r = 0.5*settings_.particleDiameter;
@@ -276,6 +327,15 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const st
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(water_.hydrostatic));
         waterForces_->defineForceFix();
     }
+    plates_.reset();
+    if (withPlates)
+    {
+        plates_ = std::make_unique<CompactionPlates>
+        (
+            *lmp_, CompactionPlateLaw{contact.normalStiffness, contact.normalDamping}
+        );
+        plates_->define();
+    }
     bonds_ = IceBondForces::define(*lmp_, ice);
     if (waterForces_)
     {
@@ -345,9 +405,10 @@ Provenance RubbleScene::readSettlingInputs() const
     Provenance p;
     p.add("stage", "rubbleDEM settle");
     p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
-    // ends: the bonding stage's; blocks.shape as resolved with -shape below
-    p.addDictionaryFile("constant/rubbleProperties", context_.path("constant/rubbleProperties"), {"ends"});
+    // ends and compaction: the later stages'; blocks.shape as resolved with -shape below
+    p.addDictionaryFile("constant/rubbleProperties", context_.path("constant/rubbleProperties"), {"ends", "compaction"});
     p.add("block shape (with -shape)", name(settings_.shape));
+    p.add("ice rained in: porosity of a blocks.rubbleThickness layer", exactNumber(settings_.expectedPorosity));
     const Dictionary coupling = Dictionary::readFile(context_.path("constant/couplingProperties"));
     p.addDictionary("constant/couplingProperties", coupling);
     if (std::filesystem::exists(context_.path("constant/g")))
@@ -359,14 +420,34 @@ Provenance RubbleScene::readSettlingInputs() const
 }
 
 
+Provenance RubbleScene::readCompactionInputs() const
+{
+    Provenance p;
+    p.add("stage", "rubbleDEM compact");
+    p.addStage("DEM/settled.h5", settlingInputs_);
+    const Dictionary rubble = Dictionary::readFile(context_.path("constant/rubbleProperties"));
+    // releaseTime: the bonding stage's
+    p.addDictionary("constant/rubbleProperties", rubble.subDict("compaction"), {"releaseTime"});
+    return p;
+}
+
+
 Provenance RubbleScene::readBondingInputs() const
 {
     Provenance p;
     p.add("stage", "rubbleDEM bond");
-    p.addStage("DEM/settled.h5", settlingInputs_);
+    if (settings_.compaction == CompactionMethod::plates)
+    {
+        p.addStage("DEM/compacted.h5", compactionInputs_);
+    }
+    else
+    {
+        p.addStage("DEM/settled.h5", settlingInputs_);
+    }
     p.addDictionaryFile("constant/freezeBondProperties", context_.path("constant/freezeBondProperties"));
     const Dictionary rubble = Dictionary::readFile(context_.path("constant/rubbleProperties"));
     p.addDictionary("constant/rubbleProperties", rubble.subDict("ends"));
+    p.add("compaction.releaseTime", exactNumber(settings_.releaseTime));
     return p;
 }
 
@@ -413,7 +494,15 @@ SavedRubble RubbleScene::gatherState(double time) const
 
 SettledLayer RubbleScene::measureLayer(double time, double kineticPerParticle, bool atRest) const
 {
-    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    return measureLayer(allPositionsByTag(*lmp_), time, kineticPerParticle, atRest);
+}
+
+
+SettledLayer RubbleScene::measureLayer
+(
+    const std::vector<Vec3>& positions, double time, double kineticPerParticle, bool atRest
+) const
+{
     const double r = 0.5*settings_.particleDiameter;
     std::vector<double> lows, highs;
     double volume = 0.0, above = 0.0;
@@ -536,6 +625,184 @@ void RubbleScene::settle()
     {
         state.write(context_.path("DEM/settled.h5"));
     }
+}
+
+
+void RubbleScene::compact()
+{
+    const auto start = std::chrono::steady_clock::now();
+    const std::string file = context_.path("constant/rubbleProperties");
+    const double area = settings_.boxLength*settings_.boxWidth;
+    const double r = 0.5*settings_.particleDiameter;
+    double low = HUGE_VAL, high = -HUGE_VAL;
+    for (const Vec3& x : allPositionsByTag(*lmp_))
+    {
+        low = std::min(low, x.z() - r);
+        high = std::max(high, x.z() + r);
+    }
+    const double bottom = std::max(0.0, low);    // not below the box floor
+    const double finalGap = gapForPorosity(rubble_.iceVolume, area, settings_.targetPorosity);
+    compacted_ = CompactedLayer();
+    compacted_.startPorosity = porosityInGap(rubble_.iceVolume, area, high - bottom);
+    if (finalGap < rubble_.blockThickness)
+    {
+        throw InputError(file, "compaction.targetPorosity", "porosity " + formatNumber(settings_.targetPorosity)
+            + " needs the plates " + formatNumber(finalGap) + " m apart, less than one block ("
+            + formatNumber(rubble_.blockThickness) + " m): the rubbled ice (" + formatNumber(rubble_.iceVolume)
+            + " m3) cannot fill so thin a layer");
+    }
+    if (finalGap >= high - bottom)
+    {
+        context_.log("Compaction: the settled rubble is already at porosity " + formatNumber(compacted_.startPorosity)
+            + " between its extremes, at or below the target " + formatNumber(settings_.targetPorosity)
+            + ": the plates hold it where it is");
+        plates_->place(bottom, high);
+    }
+    else
+    {
+        plates_->close(bottom, high, finalGap, settings_.compactionSpeed);
+    }
+    {
+        std::ostringstream msg;
+        msg << "Compacting: plates at z = " << bottom << " and " << high << " m (porosity "
+            << compacted_.startPorosity << " between them) close at " << settings_.compactionSpeed
+            << " m/s each to " << finalGap << " m apart (porosity " << settings_.targetPorosity
+            << "), then hold " << settings_.holdTime << " s, the lid backing off to " << settings_.holdPressure
+        << " Pa; stops if the lid pressure exceeds "
+            << settings_.maxCompactionPressure << " Pa";
+        context_.log(msg.str());
+    }
+    const long n = static_cast<long>(blockOfTag_.size());
+    const long closingChunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    // While it holds, the lid backs off every 10 ms towards holdPressure.
+    const long holdingChunk = std::max(1L, static_cast<long>(std::lround(0.01/dt_)));
+    const double lidStiffness = settlingContact_.normalStiffness;
+    const double targetTop = bottom + finalGap;
+    const double closingTime = std::max(0.0, 0.5*((high - bottom) - finalGap)/settings_.compactionSpeed);
+    double t = 0.0, holdUntil = HUGE_VAL, nextLog = 0.0;
+    PlateLoads loads;
+    // The blocks slide on each other with the compaction's friction while the
+    // plates close, and hold with the settling's (SceneSetup's wall column: frictionless).
+    const auto setFriction = [&](double mu)
+    {
+        lmp_->command("fix m5 all property/global coefficientFriction peratomtypepair 3 " + typePairMatrix(mu, 0.0));
+    };
+    setFriction(compactionIce_.material.frictionCoefficient);
+    bool first = true;
+    while (t < holdUntil)
+    {
+        const long chunk = holdUntil == HUGE_VAL ? closingChunk : holdingChunk;
+        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+        first = false;
+        steps_ += chunk;
+        t += chunk*dt_;
+        const double ke = totalKineticEnergy(*lmp_)/n;
+        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
+        {
+            throw RunError("compaction blew up at t = " + formatNumber(t) + " s of compaction (step "
+                + std::to_string(steps_) + "): " + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
+        }
+        loads = plates_->loads();
+        const double porosity = porosityInGap(rubble_.iceVolume, area, plates_->gap());
+        if (loads.lid/area > settings_.maxCompactionPressure)
+        {
+            throw RunError("compaction stopped at porosity " + formatNumber(porosity) + " (plates "
+                + formatNumber(plates_->gap()) + " m apart) with " + formatNumber(loads.lid/area) + " Pa on the lid, above "
+                + file + " compaction.maxPressure " + formatNumber(settings_.maxCompactionPressure)
+                + " Pa: the target porosity " + formatNumber(settings_.targetPorosity) + " is out of reach for these "
+                "blocks (they jam); aim higher, or allow more pressure");
+        }
+        if (plates_->closed() && holdUntil == HUGE_VAL)
+        {
+            holdUntil = t + settings_.holdTime;
+            compacted_.closedPorosity = porosity;
+            setFriction(settlingIce_.material.frictionCoefficient);
+            first = true;   // the pair style reads the friction at the next set-up
+        }
+        else if (holdUntil != HUGE_VAL && loads.touchingLid > 0)
+        {
+            // off by the overlap that carries the excess, never below the target gap
+            const double excess = loads.lid - settings_.holdPressure*area;
+            const double lid = std::max(targetTop,
+                plates_->top() + excess/(double(loads.touchingLid)*lidStiffness));
+            plates_->place(plates_->bottom(), lid);
+        }
+        if (t >= nextLog)
+        {
+            const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double total = closingTime + settings_.holdTime;
+            std::ostringstream line;
+            line << std::fixed << std::setprecision(2) << "  t = " << t << " s  porosity " << std::setprecision(3)
+                 << porosity << "  lid " << std::setprecision(0) << loads.lid/area << " Pa, floor " << loads.floor/area
+                 << " Pa  kinetic energy " << std::scientific << std::setprecision(2) << ke << " J/particle  about "
+                 << formatDuration(wall/std::max(t, 1e-9)*std::max(0.0, total - t)) << " left";
+            context_.log(line.str());
+            nextLog = t + 0.5;
+        }
+    }
+    compacted_.plateBottom = plates_->bottom();
+    compacted_.plateTop = plates_->top();
+    compacted_.porosity = porosityInGap(rubble_.iceVolume, area, plates_->gap());
+    compacted_.lidPressure = loads.lid/area;
+    compacted_.floorPressure = loads.floor/area;
+    compacted_.time = t;
+    compacted_.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ostringstream msg;
+    msg << "Compacted in " << t << " s (" << formatDuration(compacted_.wall) << "): porosity " << compacted_.startPorosity
+        << " -> " << compacted_.closedPorosity << ", " << compacted_.porosity << " after the lid backed off to "
+        << settings_.holdPressure << " Pa; plates at z = " << compacted_.plateBottom << " and "
+        << compacted_.plateTop << " m; lid " << compacted_.lidPressure << " Pa, floor " << compacted_.floorPressure
+        << " Pa at the end of the hold";
+    context_.log(msg.str());
+    SavedRubble state = gatherState(t);
+    state.provenance = compactionInputs_.text();
+    state.kind = SavedRubble::compactedRubble;
+    state.plateBottom = compacted_.plateBottom;
+    state.plateTop = compacted_.plateTop;
+    if (context_.rank() == 0)
+    {
+        state.write(context_.path("DEM/compacted.h5"));
+    }
+}
+
+
+void RubbleScene::release()
+{
+    const auto start = std::chrono::steady_clock::now();
+    // The ends were fixed by type when the bonds were made: the integrated group follows.
+    lmp_->command("unfix integrate");
+    lmp_->command("group released type " + std::to_string(mobileType));
+    lmp_->command("fix integrate released nve/sphere");
+    plates_->withdraw();
+    const long n = static_cast<long>(blockOfTag_.size());
+    const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    const double minTime = std::min(0.2, settings_.releaseTime);
+    double t = 0.0, ke = 0.0;
+    int quietChecks = 0;
+    bool first = true;
+    while (t < settings_.releaseTime && quietChecks < 2)
+    {
+        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+        first = false;
+        steps_ += chunk;
+        t += chunk*dt_;
+        ke = totalKineticEnergy(*lmp_)/n;
+        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
+        {
+            throw RunError("the release of the compacted rubble blew up at t = " + formatNumber(t) + " s (step "
+                + std::to_string(steps_) + "): " + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
+        }
+        quietChecks = (ke < settings_.kineticEnergyThreshold && t >= minTime) ? quietChecks + 1 : 0;
+    }
+    released_ = measureLayer(layer_.time + compacted_.time + t, ke, quietChecks >= 2);
+    std::ostringstream msg;
+    msg << "Released: plates withdrawn, " << (released_.atRest ? "at rest" : "NOT at rest") << " after " << t << " s ("
+        << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+        << "): layer " << released_.bottom << " to " << released_.top << " m, thickness " << released_.thickness
+        << " m, porosity " << released_.porosity << ", " << 100*released_.volumeAboveWater
+        << " % of the ice above water (bonds at the settling's softened stiffness, unbreakable: the geometry "
+        << "the plates leave, not the bonds' strength)";
+    context_.log(msg.str());
 }
 
 
@@ -668,6 +935,39 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["confinement_mean_Pa"] = freezeStats_.meanConfinement;
     j["confinement_max_Pa"] = freezeStats_.maxConfinement;
     j["area_correction"] = freezeBondProperties_.areaCorrection().value();
+    std::vector<double> confinements;
+    for (const NewFreezeBond& b : freezeBonds_) confinements.push_back(b.strength.confinement);
+    if (!confinements.empty())
+    {
+        j["confinement_percentiles_Pa"] = {{"p10", percentile(confinements, 0.10)},
+            {"p50", percentile(confinements, 0.50)}, {"p90", percentile(confinements, 0.90)}};
+    }
+    double blockSurface = 0.0;
+    for (const BuiltBlock& b : rubble_.blocks) blockSurface += b.surface;
+    const double bondRadius = ice_.family(BondFamily::freeze).radiusMultiplier*0.5*settings_.particleDiameter;
+    // each freeze-bond joins two blocks: its (DEM) area counts on both surfaces
+    j["bonded_surface_fraction"] = 2.0*double(freezeStats_.bonds)*M_PI*bondRadius*bondRadius/blockSurface;
+    if (settings_.compaction == CompactionMethod::plates)
+    {
+        j["compaction"] = {{"method", "plates"}, {"target_porosity", settings_.targetPorosity},
+            {"porosity_when_plates_touched", compacted_.startPorosity > 0.0 ? Json(compacted_.startPorosity) : Json()},
+            {"porosity_when_closed", compacted_.closedPorosity > 0.0 ? Json(compacted_.closedPorosity) : Json()},
+            {"hold_pressure_Pa", settings_.holdPressure},
+            {"porosity", compacted_.porosity},
+            {"plate_bottom_m", compacted_.plateBottom}, {"plate_top_m", compacted_.plateTop},
+            {"lid_pressure_at_bonding_Pa", compacted_.lidPressure},
+            {"floor_pressure_at_bonding_Pa", compacted_.floorPressure},
+            {"compaction_and_hold_s", compacted_.time}, {"wall_s", compacted_.wall}};
+        j["released"] = {{"thickness_m", released_.thickness}, {"layer_bottom_m", released_.bottom},
+            {"layer_top_m", released_.top}, {"porosity", released_.porosity},
+            {"ice_volume_above_water_fraction", released_.volumeAboveWater}, {"freeboard_m", released_.freeboard},
+            {"at_rest", released_.atRest}};
+        j["compacted_inputs_fingerprint"] = compactionInputs_.fingerprint();
+    }
+    else
+    {
+        j["compaction"] = {{"method", "none"}};
+    }
     j["ice_bonds"] = iceBonds;
     j["particles"] = long(state.particles.size());
     j["bonds"] = long(state.bonds.size());
@@ -682,37 +982,110 @@ void RubbleScene::writeSummary(double wallSeconds) const
 }
 
 
+SavedRubble RubbleScene::readStage(const std::string& file, const char* kind, const Provenance& inputs,
+                                   const std::string& rebuildStage) const
+{
+    const std::string path = context_.path(file);
+    if (!std::filesystem::exists(path))
+    {
+        throw InputError(path, "(file)", std::string("no ") + kind + ": run the " + rebuildStage + " stage first");
+    }
+    const SavedRubble saved = SavedRubble::read(path, kind);
+    requireSameInputs(Provenance::fromText(saved.provenance), inputs, path,
+        "rubbleDEM -case " + settings_.caseDir + " -stage " + rebuildStage);
+    return saved;
+}
+
+
+void RubbleScene::startFromCompacted(const SavedRubble& compacted)
+{
+    startLiggghts(&compacted, true, "", true);
+    plates_->place(compacted.plateBottom, compacted.plateTop);
+    lmp_->command("run 0");     // the plates' loads on the saved state
+    const PlateLoads loads = plates_->loads();
+    const double area = settings_.boxLength*settings_.boxWidth;
+    compacted_.plateBottom = compacted.plateBottom;
+    compacted_.plateTop = compacted.plateTop;
+    compacted_.porosity = porosityInGap(rubble_.iceVolume, area, compacted.plateTop - compacted.plateBottom);
+    compacted_.lidPressure = loads.lid/area;
+    compacted_.floorPressure = loads.floor/area;
+}
+
+
 void RubbleScene::run()
 {
     const auto start = std::chrono::steady_clock::now();
     context_.log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
         + std::to_string(context_.ranks()) + " rank(s)");
+    const bool plates = settings_.compaction == CompactionMethod::plates;
+    const bool bonding = settings_.stage == "bond" || settings_.stage == "all";
     settlingInputs_ = readSettlingInputs();
+    if (plates)
+    {
+        compactionInputs_ = readCompactionInputs();
+    }
     bondingInputs_ = readBondingInputs();
     buildBlocks();
-    if (settings_.stage == "bond")
+
+    // Each stage starts from the saved state of the one before, in this run
+    // or an earlier one alike, so that -stage all and the stages one by one
+    // give the same rubble.
+    SavedRubble settled;
+    if (settings_.stage == "settle" || settings_.stage == "all")
     {
-        const std::string settled = context_.path("DEM/settled.h5");
-        if (!std::filesystem::exists(settled))
-        {
-            throw InputError(settled, "(file)", "no settled rubble: run the settle stage first");
-        }
-        const SavedRubble saved = SavedRubble::read(settled, SavedRubble::settledRubble);
-        requireSameInputs(Provenance::fromText(saved.provenance), settlingInputs_, settled,
-            "rubbleDEM -case " + settings_.caseDir + " -stage settle");
-        startLiggghts(&saved, true);
-        layer_ = measureLayer(saved.time, totalKineticEnergy(*lmp_)/double(blockOfTag_.size()), true);
+        settle();
+        MPI_Barrier(context_.comm());   // rank 0 wrote it
+        settled = SavedRubble::read(context_.path("DEM/settled.h5"), SavedRubble::settledRubble);
     }
     else
     {
-        settle();
+        settled = readStage("DEM/settled.h5", SavedRubble::settledRubble, settlingInputs_, "settle");
+        std::vector<Vec3> positions;
+        for (const SavedParticle& p : settled.particles) positions.push_back(p.position);
+        layer_ = measureLayer(positions, settled.time, 0.0, true);
     }
-    if (settings_.stage != "settle")
+    if (plates && settings_.stage != "settle")
+    {
+        SavedRubble compacted;
+        if (settings_.stage == "bond")
+        {
+            compacted = readStage("DEM/compacted.h5", SavedRubble::compactedRubble, compactionInputs_, "compact");
+        }
+        else
+        {
+            startLiggghts(&settled, true, "", true);
+            compact();
+            MPI_Barrier(context_.comm());   // rank 0 wrote it
+            compacted = SavedRubble::read(context_.path("DEM/compacted.h5"), SavedRubble::compactedRubble);
+        }
+        if (bonding)
+        {
+            const CompactedLayer measured = compacted_;
+            startFromCompacted(compacted);
+            if (settings_.stage == "all")
+            {
+                compacted_.startPorosity = measured.startPorosity;
+                compacted_.closedPorosity = measured.closedPorosity;
+                compacted_.time = measured.time;
+                compacted_.wall = measured.wall;
+            }
+        }
+    }
+    else if (bonding && settings_.stage == "bond")
+    {
+        startLiggghts(&settled, true);
+        layer_.kineticEnergyPerParticle = totalKineticEnergy(*lmp_)/double(blockOfTag_.size());
+    }
+    if (bonding)
     {
         freezeBond();
+        if (plates)
+        {
+            release();
+        }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (settings_.stage != "settle")
+    if (bonding)
     {
         writeSummary(wall);
     }

@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 """Reduced ridge flexure (cases/ridgeFlexure) checks that can fail:
 
+On a keel compacted between plates (rubbleDEM -stage compact), held by them
+while the ridge is bonded:
+
 1. a thicker consolidated layer carries a higher failure force (same keel,
    same freeze-bonds), and the force ratio lies between 1 and the ratio of the
    layers' bending strengths (D2/D1)^2: the keel and the water carry a share
@@ -40,15 +43,19 @@ def check(ok, what):
 
 
 # A small keel of coarse one-layer blocks (the quick resolution's blocks).
+# Compacted between plates to porosity 0.45 (a 3-block-thick layer jams before 0.35), and
+# held by them while the ridge is bonded.
 keel = iceCases.small_rubble_case(rubble_case, os.path.join(work, "keel"), LENGTH, WIDTH, 0.3, 8, 15,
-                                  {"blocks.particleDiameter": 0.1, "blocks.layers": 1, "settling.minTime": 2})
+                                  {"blocks.particleDiameter": 0.1, "blocks.layers": 1, "settling.minTime": 2,
+                                   "compaction.targetPorosity": 0.45})
 iceCases.run_app(rubble_app, keel, 1, ["-stage", "settle"], "log.rubbleDEM")
+iceCases.run_app(rubble_app, keel, 1, ["-stage", "compact"], "log.compact")
 
 
 def ridge(name, thickness, seed=1):
     path = iceCases.copy_case(ridge_case, os.path.join(work, name))
     props = os.path.join(path, "constant", "ridgeProperties")
-    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel, "DEM", "settled.h5"))
+    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel, "DEM", "compacted.h5"))
     iceCases.set_entry(props, "box.length", LENGTH)
     iceCases.set_entry(props, "box.width", WIDTH)
     iceCases.set_entry(props, "consolidatedLayer.thickness", thickness)

@@ -59,6 +59,7 @@ def build_keel(work, bin_dir):
     for entry, value in (("box.length", LENGTH), ("box.width", WIDTH), ("blocks.rubbleThickness", 0.25),
                          ("settling.maxTime", 4), ("settling.minTime", 1), ("settling.maxTilt", 30)):
         iceCases.set_entry(props, entry, value)
+    iceCases.uncompacted(props, 0.6)    # the keel as settled (ridgeFlexureSmall's is compacted)
     wall = iceCases.run_app(os.path.join(bin_dir, "rubbleDEM"), keel, 1, ["-stage", "settle"], "log.rubbleDEM")
     check(os.path.exists(keel_file(work)), f"small keel settled ({wall:.0f} s): {keel_file(work)}")
 

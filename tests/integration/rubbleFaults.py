@@ -26,8 +26,10 @@ def check(ok, what):
 
 
 def small(name):
-    return iceCases.small_rubble_case(case, os.path.join(work, name), 1.0, 0.6, 0.2, 3, 30,
+    path = iceCases.small_rubble_case(case, os.path.join(work, name), 1.0, 0.6, 0.2, 3, 30,
                                       {"settling.checkpointInterval": 0.25})
+    iceCases.uncompacted(os.path.join(path, "constant", "rubbleProperties"), 0.6)    # settling only
+    return path
 
 
 whole = small("whole")

@@ -77,8 +77,8 @@ def prepare(run, resolution, target=None):
         return target
     iceCases.copy_case(CASE, target)
     props = os.path.join(target, "constant", "ridgeProperties")
-    settled = os.path.join(keel_case(run, resolution), "DEM", "settled.h5")
-    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(settled, target))
+    keel = iceCases.keel_file(keel_case(run, resolution))
+    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(keel, target))
     iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
     iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
     if resolution != "default":
@@ -255,9 +255,9 @@ def main():
                          % (",".join(map(str, unknown)), min(r["run"] for r in runs), max(r["run"] for r in runs)))
         runs = [r for r in runs if r["run"] in set(args.runs)]
     for run in runs:
-        settled = os.path.join(keel_case(run, args.resolution), "DEM", "settled.h5")
-        if not os.path.exists(settled):
-            sys.exit("ridgeMatrix: %s is missing: build the keel first (./Allrun does)" % settled)
+        keel = iceCases.keel_file(keel_case(run, args.resolution))
+        if not os.path.exists(keel):
+            sys.exit("ridgeMatrix: %s is missing: build the keel first (./Allrun does)" % keel)
 
     lock = threading.Lock()
     started = time.time()

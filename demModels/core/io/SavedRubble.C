@@ -4,6 +4,7 @@
 #include "Hdf5Io.H"
 #include "InputError.H"
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -169,6 +170,11 @@ void SavedRubble::write(const std::string& path) const
         {
             writeStringAttribute(root.get(), "restart", restart, path);
         }
+        if (std::isfinite(plateBottom) && std::isfinite(plateTop))
+        {
+            writeScalarAttribute(root.get(), "plateBottom", plateBottom, path);
+            writeScalarAttribute(root.get(), "plateTop", plateTop, path);
+        }
     });
 }
 
@@ -216,6 +222,11 @@ SavedRubble SavedRubble::readContents(const std::string& path)
     r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
     r.kind = readStringAttributeOrEmpty(root.get(), "kind", path);
     r.restart = readStringAttributeOrEmpty(root.get(), "restart", path);
+    if (H5Aexists(root.get(), "plateBottom") > 0 && H5Aexists(root.get(), "plateTop") > 0)
+    {
+        r.plateBottom = readScalarAttribute(root.get(), "plateBottom", path);
+        r.plateTop = readScalarAttribute(root.get(), "plateTop", path);
+    }
     return r;
 }
 

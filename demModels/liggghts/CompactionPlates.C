@@ -1,0 +1,115 @@
+#include "CompactionPlates.H"
+
+#include "LiggghtsInstance.H"
+
+#include "atom.h"
+#include "fix_external.h"
+#include "lammps.h"
+#include "update.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace iceDEM
+{
+
+CompactionPlates::CompactionPlates(LiggghtsInstance& lmp, const CompactionPlateLaw& law)
+:
+    lmp_(lmp),
+    law_(law)
+{}
+
+
+void CompactionPlates::define()
+{
+    lmp_.command(std::string("fix ") + fixId + " all external pf/callback 1 1");
+    static_cast<LAMMPS_NS::FixExternal&>(lmp_.fix(fixId)).set_callback(&CompactionPlates::callback, this);
+}
+
+
+void CompactionPlates::place(double bottom, double top)
+{
+    close(bottom, top, top - bottom, 0.0);
+}
+
+
+void CompactionPlates::close(double bottom, double top, double finalGap, double speed)
+{
+    if (!(bottom < top) || !(finalGap > 0.0) || finalGap > top - bottom || speed < 0.0)
+    {
+        throw std::logic_error("CompactionPlates::close: needs bottom < top, 0 < finalGap <= top - bottom, speed >= 0");
+    }
+    startBottom_ = bottom_ = bottom;
+    startTop_ = top_ = top;
+    finalGap_ = finalGap;
+    speed_ = speed;
+    startStep_ = lmp_.step();
+    velocity_ = 0.0;
+    closed_ = finalGap == top - bottom;
+    active_ = true;
+}
+
+
+void CompactionPlates::callback(void* self, int64_t step, int, int*, double**, double** fexternal)
+{
+    static_cast<CompactionPlates*>(self)->addForces(static_cast<long>(step), fexternal);
+}
+
+
+void CompactionPlates::addForces(long step, double** fexternal)
+{
+    const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
+    local_ = PlateLoads();
+    if (active_)
+    {
+        const double travel = speed_*static_cast<double>(step - startStep_)*lmp_.engine().update->dt;
+        const double halfDistance = 0.5*(startTop_ - startBottom_ - finalGap_);
+        closed_ = travel >= halfDistance;
+        const double closing = closed_ ? halfDistance : travel;
+        bottom_ = startBottom_ + closing;
+        top_ = startTop_ - closing;
+        velocity_ = closed_ ? 0.0 : speed_;
+    }
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        fexternal[i][0] = fexternal[i][1] = fexternal[i][2] = 0.0;
+        if (!active_)
+        {
+            continue;
+        }
+        const double f = law_.force(atom.x[i][2], atom.v[i][2], atom.radius[i], bottom_, top_, velocity_, -velocity_);
+        if (f == 0.0)
+        {
+            continue;
+        }
+        fexternal[i][2] = f;
+        ++local_.touching;
+        if (f > 0.0)
+        {
+            local_.floor += f;
+        }
+        else
+        {
+            local_.lid -= f;
+            ++local_.touchingLid;
+        }
+    }
+}
+
+
+PlateLoads CompactionPlates::loads() const
+{
+    double local[4] = {local_.floor, local_.lid, double(local_.touching), double(local_.touchingLid)};
+    double sum[4];
+    MPI_Allreduce(local, sum, 4, MPI_DOUBLE, MPI_SUM, lmp_.communicator());
+    PlateLoads total;
+    total.floor = sum[0];
+    total.lid = sum[1];
+    total.touching = static_cast<long>(sum[2]);
+    total.touchingLid = static_cast<long>(sum[3]);
+    return total;
+}
+
+} // namespace iceDEM
