@@ -119,7 +119,7 @@ check(one["freeze_bonds"] == two["freeze_bonds"],
       f"same freeze-bond count on 1 and 2 ranks ({one['freeze_bonds']}, {two['freeze_bonds']})")
 check(one["freeze_bond_tensile_mean_Pa"] == two["freeze_bond_tensile_mean_Pa"],
       "same mean freeze-bond strength on 1 and 2 ranks")
-check(abs(one["compaction"]["porosity"] - c1["porosity"]) < 1e-9 and one["released"]["porosity"] > 0,
+check(abs(one["compaction"]["porosity"] - c1["porosity"]) < 1e-4 and one["released"]["porosity"] > 0,
       f"summary: compacted to {one['compaction']['porosity']:.4f}, released to {one['released']['porosity']:.4f}")
 # The same settled heap bonded where it lay, in a copy without compaction.
 loose = iceCases.copy_case(beam, os.path.join(work, "beamLoose"))

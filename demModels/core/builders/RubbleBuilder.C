@@ -76,19 +76,36 @@ Rubble buildRubble(const RubbleSpec& spec, const BlockSizeSource& sizes)
     {
         const BlockSize size = sizes.draw(rng);
         const PlanPolygon local = blockOutline(size, spec.shape, rng);
-        const PlanPolygon turned = local.rotated(turn(rng));
-        const std::vector<Vec3> flat = hcpBlockCentres(turned, spec.particleDiameter, spec.layers);
+        // A long block in a narrow box is turned again until it fits.
+        constexpr int turnsToTry = 16;
+        PlanPolygon turned;
+        std::vector<Vec3> flat, centres;
+        Envelope box;
+        Vec3 extent;
+        bool fits = false;
+        for (int attempt = 0; attempt < turnsToTry && !fits; ++attempt)
+        {
+            turned = local.rotated(turn(rng));
+            flat = hcpBlockCentres(turned, spec.particleDiameter, spec.layers);
+            if (flat.empty())
+            {
+                break;
+            }
+            const double tiltDirection = turn(rng);
+            centres = tilted(flat, tiltDirection, tilt(rng));
+            box = envelope(centres, r);
+            extent = box.hi - box.lo;
+            fits = extent.x() <= spec.boxLength && extent.y() <= spec.boxWidth;
+        }
         if (flat.empty())
         {
             continue;
         }
-        const double tiltDirection = turn(rng);
-        const std::vector<Vec3> centres = tilted(flat, tiltDirection, tilt(rng));
-        const Envelope box = envelope(centres, r);
-        const Vec3 extent = box.hi - box.lo;
-        if (extent.x() > spec.boxLength || extent.y() > spec.boxWidth)
+        if (!fits)
         {
-            throw std::invalid_argument("buildRubble: a block does not fit in the box");
+            throw std::invalid_argument("buildRubble: a block of " + std::to_string(size.length) + " x "
+                + std::to_string(size.width) + " m fits the " + std::to_string(spec.boxLength) + " x "
+                + std::to_string(spec.boxWidth) + " m box in none of " + std::to_string(turnsToTry) + " orientations");
         }
         if (x + extent.x() > spec.boxLength)
         {
