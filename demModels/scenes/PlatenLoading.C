@@ -3,6 +3,8 @@
 
 #include "AtomicFile.H"
 #include "Dictionary.H"
+#include "ForceCurveAnalysis.H"
+#include "InertiaScaling.H"
 #include "IceBondForces.H"
 #include "InputError.H"
 #include "Json.H"
@@ -67,6 +69,7 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("blowUpFactor", "expected a number >= 1 (the kinetic energy allowed per unit of energy put in)");
     }
+    maxKineticToElastic = readMaxKineticToElasticRatio(control);
     sampleInterval = control.getPositiveScalarOrDefault("sampleInterval", 2e-4);
     writeInterval = control.getPositiveScalarOrDefault("writeInterval", 0.01);
     checkpointInterval = control.getPositiveScalarOrDefault("checkpointInterval", 0.02);
@@ -74,6 +77,14 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("sampleInterval", "must not exceed writeInterval");
     }
+}
+
+
+void PlatenLoadingControl::readInertiaScaling(const Dictionary& d, const std::string& key)
+{
+    inertiaScaling = iceDEM::readInertiaScaling(d, key);
+    inertiaScalingFile = d.fileName();
+    inertiaScalingEntry = d.entryPath(key);
 }
 
 
@@ -190,8 +201,18 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
             + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
             + std::to_string(expectedStep) + "; delete the folder and start again");
     }
-    update.atime = update.ntimestep * state_.dt;
-    update.atimestep = update.ntimestep;
+    if (stepChangedAtStart_)
+    {
+        // The clock as the uninterrupted run has it: LIGGGHTS' `timestep`
+        // command fixed it at the loading's start, then counted this step.
+        update.atime = c.state.startTime;
+        update.atimestep = c.state.liggghtsStepAtStart;
+    }
+    else
+    {
+        update.atime = update.ntimestep * state_.dt;
+        update.atimestep = update.ntimestep;
+    }
     bonds.restoreBonds(c.bonds);
     resumedBonds_ = c.bonds;
 
@@ -221,6 +242,7 @@ void PlatenLoading::run
     try
     {
         load(lmp, bonds, hooks);
+        checkQuasiStatic();
         writeSummary();
     }
     catch (const std::exception& e)
@@ -299,6 +321,12 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
          << maxSteps << " steps (" << control_.maxTravel * 1e3 << " mm of travel after contact)";
+    if (control_.inertiaScaling != 1.0)
+    {
+        plan << "; inertia scaled by " << control_.inertiaScaling << " (" << control_.inertiaScalingFile << ": "
+             << control_.inertiaScalingEntry << "; time step " << dt << " s), refused if the kinetic-to-elastic"
+             << " energy ratio near the peak exceeds " << control_.maxKineticToElastic;
+    }
     context_.log(plan.str());
 
     if (resumed_)
@@ -314,7 +342,7 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
     {
         st.startTime = lmp.time();
         st.liggghtsStepAtStart = lmp.step();
-        st.kineticAtStart = totalKineticEnergy(lmp);
+        st.kineticAtStart = control_.inertiaScaling * totalKineticEnergy(lmp);
         writeFrame(lmp, bonds);
     }
     firstStep_ = st.steps;
@@ -404,7 +432,52 @@ long PlatenLoading::stepsPerSampleInWholeAdvances(long stepsPerAdvance) const
 void PlatenLoading::logEnd(double wallSeconds) const
 {
     context_.log("End: " + std::to_string(state_.steps) + " steps in " + formatDuration(wallSeconds) + ", "
-        + std::to_string(breakage_.size()) + " bonds broken");
+        + std::to_string(breakage_.size()) + " bonds broken; kinetic/elastic energy near the peak "
+        + formatNumber(kineticToElasticNearPeak())
+        + (control_.inertiaScaling != 1.0 ? " (inertia scaled by " + formatNumber(control_.inertiaScaling) + ")" : ""));
+}
+
+
+double PlatenLoading::kineticToElasticNearPeak() const
+{
+    std::vector<double> force, kinetic, elastic;
+    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    {
+        const std::vector<double>& row = curve_.row(k);
+        force.push_back(row[forceColumn]);
+        kinetic.push_back(row[kineticColumn]);
+        elastic.push_back(row[bondEnergyColumn]);
+    }
+    return iceDEM::kineticToElasticNearPeak(force, kinetic, elastic);
+}
+
+
+void PlatenLoading::addQuasiStaticFigures(Json& j) const
+{
+    j["inertia_scaling"] = control_.inertiaScaling;
+    j["kinetic_to_elastic_energy_near_peak"] = kineticToElasticNearPeak();
+    j["kinetic_to_elastic_energy_limit"] = control_.maxKineticToElastic;
+}
+
+
+void PlatenLoading::checkQuasiStatic() const
+{
+    const double ratio = kineticToElasticNearPeak();
+    if (control_.inertiaScaling == 1.0 || !(ratio > control_.maxKineticToElastic))
+    {
+        return;
+    }
+    // The scaled kinetic energy grows as s at a given platen speed.
+    const double largest = control_.inertiaScaling * control_.maxKineticToElastic / ratio;
+    throw InputError
+    (
+        control_.inertiaScalingFile, control_.inertiaScalingEntry,
+        formatNumber(control_.inertiaScaling) + " made the loading dynamic: the kinetic-to-elastic energy ratio near the"
+        " peak is " + formatNumber(ratio) + ", above the limit " + formatNumber(control_.maxKineticToElastic)
+        + " (system/controlDict maxKineticToElasticRatio); the force curve is in postProcessing/platenForce.csv."
+        " Use a factor of at most about " + formatNumber(std::max(1.0, largest))
+        + " (the ratio grows with it), or 1"
+    );
 }
 
 
@@ -416,7 +489,7 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
     st.platenWork += 0.5 * (force + st.previousForce) * (travel - st.previousTravel);
     st.previousTravel = travel;
     st.previousForce = force;
-    const double kinetic = totalKineticEnergy(lmp);
+    const double kinetic = control_.inertiaScaling * totalKineticEnergy(lmp);
     const double elastic = sumOverRanks(context_.comm(), bonds.localBondEnergy());
     for (const BreakEvent& e : gatherBreakEvents(context_.comm(), bonds.takeLocalBreakEvents()))
     {
@@ -440,7 +513,7 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
                 "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
         }
     }
-    checkHealth(lmp, bonds, kinetic);
+    checkHealth(lmp, bonds, hooks, kinetic);
 
     if (force > st.peak)
     {
@@ -451,11 +524,15 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
 }
 
 
-void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, double kinetic) const
+void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, double kinetic) const
 {
     // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
     // that the platen never put in.
     std::string failure = bonds.failure();
+    if (failure.empty() && hooks.failure)
+    {
+        failure = hooks.failure();
+    }
     const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp.engine().atom->nlocal));
     if (failure.empty() && present != particleCount_)
     {
@@ -470,7 +547,9 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
         msg << "kinetic energy " << kinetic << " J exceeds " << control_.blowUpFactor << " times the work done by the platen ("
             << state_.platenWork << " J) and the kinetic energy at the start (" << state_.kineticAtStart
             << " J) at time " << lmp.time() << " s, step " << lmp.step()
-            << ": the run is unstable (lower timeStep.factor; a body that stores energy of its own, e.g. floating"
+            << ": the run is unstable (lower timeStep.factor"
+            << (control_.inertiaScaling != 1.0 ? " or " + control_.inertiaScalingEntry : std::string())
+            << "; a body that stores energy of its own, e.g. floating"
             << " ice that falls when it breaks, may need a larger blowUpFactor in system/controlDict)";
         failure = msg.str();
         anyFailed = 1;

@@ -322,6 +322,28 @@ def bad_input(work, bin_dir):
     expect("keelOfAnotherBox", lambda p: iceCases.set_entry(p, "box.length", 1.0),
            ["ridgeProperties", "'box'", "another box"])
 
+    # Inertia scaling (issue 17): range-checked, and refused where nothing is integrated
+    # (the keel-bond tests hold the layer and sum its forces) and in the rubble's settling.
+    def inertia(value):
+        def edit(path):
+            text = open(path).read()
+            at = text.index("\ntest\n{") + len("\ntest\n{")
+            open(path, "w").write(text[:at] + f"\n    inertiaScaling {value};" + text[at:])
+        return edit
+    expect("inertiaInKeelBondTest", inertia(10), ["ridgeProperties", "test.inertiaScaling",
+                                                 "integrates no particle's motion"])
+    expect("inertiaBelowOne", inertia(0.5), ["ridgeProperties", "test.inertiaScaling", "[1, 10000]"])
+    rubble = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(work, "bad", "inertiaInSettling"))
+    props = os.path.join(rubble, "constant", "rubbleProperties")
+    text = open(props).read()
+    open(props, "w").write(text.replace("\nbox\n", "\ninertiaScaling 10;\n\nbox\n", 1))
+    r = subprocess.run(["mpirun", "-np", "1", "--oversubscribe", os.path.join(bin_dir, "rubbleDEM"), "-case", rubble,
+                        "-stage", "settle"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    words = ["rubbleProperties", "inertiaScaling", "rubble settling is no quasi-static loading"]
+    check(r.returncode == 1 and all(w in r.stdout for w in words),
+          f"inertiaInSettling: exit {r.returncode}, message names {words}: "
+          + next((line for line in r.stdout.splitlines() if "inertiaScaling" in line), r.stdout[-300:]).strip())
+
 
 def faults(work, bin_dir):
     import random

@@ -227,4 +227,33 @@ double contactOnset
     return notANumber;
 }
 
+double kineticToElasticNearPeak
+(
+    const std::vector<double>& force,
+    const std::vector<double>& kinetic,
+    const std::vector<double>& elastic,
+    double halfFraction
+)
+{
+    if (kinetic.size() != force.size() || elastic.size() != force.size())
+    {
+        throw std::invalid_argument("kineticToElasticNearPeak: force, kinetic and elastic differ in length");
+    }
+    if (force.empty())
+    {
+        return 0.0;
+    }
+    const std::size_t peak = std::max_element(force.begin(), force.end()) - force.begin();
+    double sumKinetic = 0.0, sumElastic = 0.0;
+    for (std::size_t k = 0; k <= peak; ++k)
+    {
+        if (force[k] >= halfFraction * force[peak])
+        {
+            sumKinetic += kinetic[k];
+            sumElastic += elastic[k];
+        }
+    }
+    return sumElastic > 0.0 ? sumKinetic / sumElastic : 0.0;
+}
+
 } // namespace iceDEM
