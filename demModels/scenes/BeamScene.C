@@ -126,7 +126,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToElasticRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
     s.loading.readInertiaScaling(props);

@@ -165,7 +165,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     control.checkKeys
     ({
         "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToElasticRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
     return s;
@@ -636,7 +636,7 @@ std::vector<double> RidgeScene::waterColumns()
     const double share = water.buoyancy(submerged - submergedAtStart_);
     const double platenBuoyancy = test_->loadingBodyBuoyancy
     (
-        water, settings_.loading.travelAt(lmp_->time() - loading_->state().startTime)
+        water, settings_.loading.travelAt(loading_->time(*lmp_) - loading_->state().startTime)
     );
     std::vector<double> columns{buoyancy, submerged, share, platenBuoyancy};
     if (externalWater_)

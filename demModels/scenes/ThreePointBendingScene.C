@@ -159,7 +159,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToElasticRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
     s.loading.readInertiaScaling(props);

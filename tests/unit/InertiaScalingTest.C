@@ -148,21 +148,42 @@ TEST(InertiaScaling, refusedWhereItMustNotBeUsed)
 
 TEST(InertiaScaling, limitEntryOfTheRunControl)
 {
-    EXPECT_EQ(readMaxKineticToElasticRatio(parse("maxTravel 0.1;\n")), defaultMaxKineticToElasticRatio);
-    EXPECT_EQ(readMaxKineticToElasticRatio(parse("maxKineticToElasticRatio 0.5;\n")), 0.5);
-    EXPECT_THROW(readMaxKineticToElasticRatio(parse("maxKineticToElasticRatio 0;\n")), InputError);
+    EXPECT_EQ(readMaxKineticToWorkRatio(parse("maxTravel 0.1;\n")), defaultMaxKineticToWorkRatio);
+    EXPECT_EQ(readMaxKineticToWorkRatio(parse("maxKineticToWorkRatio 0.5;\n")), 0.5);
+    EXPECT_THROW(readMaxKineticToWorkRatio(parse("maxKineticToWorkRatio 0;\n")), InputError);
 }
 
 
-TEST(InertiaScaling, kineticToElasticNearPeakSumsTheRiseToThePeak)
+TEST(InertiaScaling, kineticToElasticNearPeakIsTheMedianOverTheRiseToThePeak)
 {
-    // Peak 10 at index 4; samples from index 2 on reach half of it; index 5 is past the peak.
-    const std::vector<double> force{1, 4, 5, 8, 10, 9, 2};
-    const std::vector<double> kinetic{100, 100, 1, 2, 3, 1000, 1000};
-    const std::vector<double> elastic{0, 1, 10, 20, 30, 30, 0};
-    EXPECT_DOUBLE_EQ(kineticToElasticNearPeak(force, kinetic, elastic), (1.0 + 2 + 3) / (10.0 + 20 + 30));
-    EXPECT_DOUBLE_EQ(kineticToElasticNearPeak(force, kinetic, elastic, 0.9), 3.0 / 30.0);
-    EXPECT_EQ(kineticToElasticNearPeak(force, kinetic, std::vector<double>(7, 0.0)), 0.0);
+    // Peak 10 at index 5; samples from index 2 on reach half of it; index 6 is past the peak.
+    const std::vector<double> force{1, 4, 5, 8, 9, 10, 9, 2};
+    const std::vector<double> kinetic{100, 100, 1, 2, 300, 3, 1000, 1000};
+    const std::vector<double> elastic{0, 1, 10, 20, 30, 30, 30, 0};
+    // Ratios 0.1, 0.1, 10 (a piece flying off), 0.1 over indices 2-5: the median ignores the spike.
+    EXPECT_DOUBLE_EQ(kineticToElasticNearPeak(force, kinetic, elastic), 0.1);
+    // An odd count: 0.1, 10, 0.1 (indices 3-5 reach 0.8 of the peak).
+    EXPECT_DOUBLE_EQ(kineticToElasticNearPeak(force, kinetic, elastic, 0.8), 0.1);
+    // An even count, the mean of the middle two: indices 4 and 5 (ratios 10 and 0.1) reach 0.9 of the peak.
+    EXPECT_DOUBLE_EQ(kineticToElasticNearPeak(force, kinetic, elastic, 0.9), 0.5 * (10.0 + 0.1));
+    // Samples without elastic energy do not count; none at all gives 0.
+    EXPECT_EQ(kineticToElasticNearPeak(force, kinetic, std::vector<double>(8, 0.0)), 0.0);
     EXPECT_EQ(kineticToElasticNearPeak({}, {}, {}), 0.0);
     EXPECT_THROW(kineticToElasticNearPeak(force, kinetic, {1, 2}), std::invalid_argument);
+}
+
+
+TEST(InertiaScaling, kineticToWorkIsTheMedianOverTheLoading)
+{
+    // Work by the trapezoidal rule from the first sample: 1, 3, 5 at samples 1-3.
+    const std::vector<double> travel{0, 1, 2, 3};
+    const std::vector<double> force{0, 2, 2, 2};
+    const std::vector<double> kinetic{9, 0.1, 0.3, 10};
+    // Ratios 0.1, 0.1, 2: the median; the first sample (no work yet) does not count.
+    EXPECT_DOUBLE_EQ(kineticToWork(travel, force, kinetic), 0.1);
+    // Samples before the platen has done work do not count either (force 0, or pulled back).
+    EXPECT_DOUBLE_EQ(kineticToWork({0, 1, 2, 3, 4}, {0, 0, 2, 2, 2}, {5, 5, 0.1, 0.3, 10}), 0.1);
+    EXPECT_EQ(kineticToWork({0, 1}, {0, 0}, {1, 1}), 0.0);
+    EXPECT_EQ(kineticToWork({}, {}, {}), 0.0);
+    EXPECT_THROW(kineticToWork(travel, force, {1, 2}), std::invalid_argument);
 }

@@ -227,6 +227,28 @@ double contactOnset
     return notANumber;
 }
 
+namespace
+{
+
+double median(std::vector<double> values)
+{
+    if (values.empty())
+    {
+        return 0.0;
+    }
+    const std::size_t n = values.size();
+    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+    const double upper = values[n / 2];
+    if (n % 2 == 1)
+    {
+        return upper;
+    }
+    return 0.5 * (*std::max_element(values.begin(), values.begin() + n / 2) + upper);
+}
+
+} // namespace
+
+
 double kineticToElasticNearPeak
 (
     const std::vector<double>& force,
@@ -244,16 +266,39 @@ double kineticToElasticNearPeak
         return 0.0;
     }
     const std::size_t peak = std::max_element(force.begin(), force.end()) - force.begin();
-    double sumKinetic = 0.0, sumElastic = 0.0;
+    std::vector<double> ratios;
     for (std::size_t k = 0; k <= peak; ++k)
     {
-        if (force[k] >= halfFraction * force[peak])
+        if (force[k] >= halfFraction * force[peak] && elastic[k] > 0.0)
         {
-            sumKinetic += kinetic[k];
-            sumElastic += elastic[k];
+            ratios.push_back(kinetic[k] / elastic[k]);
         }
     }
-    return sumElastic > 0.0 ? sumKinetic / sumElastic : 0.0;
+    return median(ratios);
+}
+
+double kineticToWork
+(
+    const std::vector<double>& travel,
+    const std::vector<double>& force,
+    const std::vector<double>& kinetic
+)
+{
+    if (force.size() != travel.size() || kinetic.size() != travel.size())
+    {
+        throw std::invalid_argument("kineticToWork: travel, force and kinetic differ in length");
+    }
+    std::vector<double> ratios;
+    double work = 0.0;
+    for (std::size_t k = 1; k < travel.size(); ++k)
+    {
+        work += 0.5 * (force[k] + force[k - 1]) * (travel[k] - travel[k - 1]);
+        if (work > 0.0)
+        {
+            ratios.push_back(kinetic[k] / work);
+        }
+    }
+    return median(ratios);
 }
 
 } // namespace iceDEM

@@ -38,9 +38,9 @@ void refuseInertiaScaling(const Dictionary& d, const std::string& key, const std
 }
 
 
-double readMaxKineticToElasticRatio(const Dictionary& control)
+double readMaxKineticToWorkRatio(const Dictionary& control)
 {
-    return control.getPositiveScalarOrDefault("maxKineticToElasticRatio", defaultMaxKineticToElasticRatio);
+    return control.getPositiveScalarOrDefault("maxKineticToWorkRatio", defaultMaxKineticToWorkRatio);
 }
 
 } // namespace iceDEM
