@@ -438,7 +438,11 @@ void PlatenLoading::logEnd(double wallSeconds) const
         + std::to_string(breakage_.size()) + " bonds broken; kinetic energy / platen work "
         + formatNumber(kineticToWorkRatio()) + " (median over the loading), kinetic / bond energy near the peak "
         + formatNumber(kineticToElasticNearPeak())
-        + (control_.inertiaScaling != 1.0 ? " (inertia scaled by " + formatNumber(control_.inertiaScaling) + ")" : ""));
+        + (control_.inertiaScaling != 1.0 ? " (inertia scaled by " + formatNumber(control_.inertiaScaling) + ")" : "")
+        + (kineticToWorkRatio() > control_.maxKineticToWork
+            ? "; above " + formatNumber(control_.maxKineticToWork) + ", the limit of a run with inertia scaling:"
+              " not quasi-static by it"
+            : std::string()));
 }
 
 
