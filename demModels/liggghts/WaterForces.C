@@ -1,5 +1,6 @@
 #include "WaterForces.H"
 
+#include "InertiaScalingFix.H"
 #include "LiggghtsInstance.H"
 
 #include "atom.h"
@@ -81,7 +82,10 @@ std::string WaterForces::orderProblem() const
             return "fix " + std::string(forceFixId) + " comes after fix " + id
                 + ": it must come first (the ice-bond fix damps the total force, water included)";
         }
-        if (addedMassFixDefined_ && k > addedMassFix && (modify.fmask[k] & LAMMPS_NS::FixConst::POST_FORCE))
+        // The inertia scaling (InertiaScalingFix) scales the force too: the
+        // order of two scalings does not matter.
+        if (addedMassFixDefined_ && k > addedMassFix && id != InertiaScalingFix::fixId
+         && (modify.fmask[k] & LAMMPS_NS::FixConst::POST_FORCE))
         {
             return "fix " + id + " adds forces after fix " + std::string(addedMassFixId)
                 + ", which must be the last (it turns the total force into an acceleration with the added mass)";

@@ -62,7 +62,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
 {
     BeamSceneSettings s;
     const Dictionary props = Dictionary::readFile(caseDir + "/constant/beamProperties");
-    props.checkKeys({"beam", "packing", "platen", "fieldReference"});
+    props.checkKeys({"beam", "packing", "platen", "fieldReference", "inertiaScaling"});
 
     auto positive = [](const Dictionary& d, const std::string& key, double def, bool required)
     {
@@ -126,9 +126,10 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
+    s.loading.readInertiaScaling(props);
     s.loading.speed = s.platenSpeed;
     s.loading.initialGap = s.initialGap;
     s.loading.fixedSteps = options.steps;
@@ -167,7 +168,8 @@ void BeamScene::buildParticles()
         {
             markFixedEnds(particles, 0, settings_.padLength, spec.lo, spec.hi);
         },
-        [this](const std::string& line) { context_.log(line); }
+        [this](const std::string& line) { context_.log(line); },
+        settings_.loading.inertiaScaling
     );
 }
 
@@ -229,7 +231,7 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     lmp_ = context_.startLiggghts(variables, "DEM/in.levelIceBeam");
     LiggghtsInstance& lmp = *lmp_;
 
-    bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
+    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
 }
 
 
@@ -295,7 +297,8 @@ void BeamScene::run()
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return platenForce(); };
     hooks.stopEjecta = [this] { return freezeEjecta(); };
-    loading_->run(*lmp_, *bonds_, hooks, [this] { writeSummary(context_.wallSeconds()); });
+    hooks.failure = [this] { return forces_.failure(); };
+    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(context_.wallSeconds()); });
     loading_->logEnd(context_.wallSeconds());
 }
 
@@ -381,6 +384,7 @@ void BeamScene::writeSummary(double wallSeconds) const
         j["peak_error"] = r.peakForce / settings_.fieldPeak - 1.0;
     }
     j["kinetic_to_elastic_energy_at_peak"] = state.kineticToElasticAtPeak;
+    loading_->addQuasiStaticFigures(j);
     j["crack_pattern"] =
     {
         {"broken_bonds", breaks.size()},

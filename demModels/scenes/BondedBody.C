@@ -1,6 +1,7 @@
 #include "BondedBody.H"
 
 #include "IceBondForces.H"
+#include "InertiaScalingFix.H"
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "PlatenLoading.H"
@@ -23,10 +24,12 @@ BondedBody buildBondedBody
     const IceProperties& ice,
     const std::string& icePropertiesPath,
     const std::function<void(std::vector<ParticleSpec>&)>& markFixed,
-    const std::function<void(const std::string&)>& log
+    const std::function<void(const std::string&)>& log,
+    double inertiaScaling
 )
 {
     BondedBody body;
+    body.inertiaScaling = inertiaScaling;
     body.particles = buildRandomPacking(spec, body.packing);
     if (markFixed)
     {
@@ -48,17 +51,40 @@ BondedBody buildBondedBody
     const double minMass = ice.material.density * 4.0 / 3.0 * M_PI * std::pow(stats.minRadius, 3);
     body.contact = ContactParameters::of(ice, 2.0 * stats.meanRadius, minMass);
 
-    const TimeStepLimits limits = timeStepLimits(ice, stats.minRadius, body.bondStats.maxBondsPerParticle);
+    const TimeStepLimits limits =
+        timeStepLimits(ice, stats.minRadius, body.bondStats.maxBondsPerParticle, inertiaScaling);
     body.dt = chooseTimeStep(ice, limits, icePropertiesPath);
     std::ostringstream step;
     step << "Time step " << body.dt << " s (limit " << limits.limit << " s; stiffest spring: "
-         << limits.stiffestSpringName << ", critical " << limits.stiffestSpring << " s)";
+         << limits.stiffestSpringName << ", critical " << limits.stiffestSpring << " s";
+    if (inertiaScaling != 1.0)
+    {
+        step << "; inertia scaled by " << inertiaScaling;
+    }
+    step << ")";
     log(step.str());
     return body;
 }
 
 
-std::unique_ptr<IceBondForces> attachIceBonds
+AttachedForces::AttachedForces() = default;
+AttachedForces::AttachedForces(AttachedForces&&) noexcept = default;
+AttachedForces& AttachedForces::operator=(AttachedForces&&) noexcept = default;
+AttachedForces::~AttachedForces() = default;
+
+
+std::string AttachedForces::failure() const
+{
+    std::string f = bonds ? bonds->failure() : std::string();
+    if (f.empty() && inertia)
+    {
+        f = inertia->failure();
+    }
+    return f;
+}
+
+
+AttachedForces attachIceBonds
 (
     LiggghtsInstance& lmp,
     const IceProperties& ice,
@@ -67,7 +93,14 @@ std::unique_ptr<IceBondForces> attachIceBonds
     const Checkpoint* resume
 )
 {
-    auto bonds = IceBondForces::define(lmp, ice);
+    AttachedForces attached;
+    attached.bonds = IceBondForces::define(lmp, ice);
+    std::unique_ptr<IceBondForces>& bonds = attached.bonds;
+    if (body.inertiaScaling != 1.0)
+    {
+        attached.inertia = std::make_unique<InertiaScalingFix>(lmp, body.inertiaScaling);
+        attached.inertia->define();
+    }
     // LIGGGHTS' set-up of the first run resets property/atom values to their
     // defaults, so the bonds are stored after it.
     lmp.command("run 0");
@@ -80,7 +113,7 @@ std::unique_ptr<IceBondForces> attachIceBonds
         bonds->createBonds(body.particles, body.bondPairs);
     }
     lmp.command("run 0");   // forces of the first step with the bonds in place
-    return bonds;
+    return attached;
 }
 
 

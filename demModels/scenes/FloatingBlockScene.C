@@ -3,6 +3,7 @@
 
 #include "AtomicFile.H"
 #include "Dictionary.H"
+#include "InertiaScaling.H"
 #include "IceBondForces.H"
 #include "Json.H"
 #include "InputError.H"
@@ -54,7 +55,10 @@ FloatingBlockSettings FloatingBlockSettings::read(const std::string& caseDir)
     };
 
     const Dictionary props = Dictionary::readFile(caseDir + "/constant/blockProperties");
-    props.checkKeys({"block"});
+    props.checkKeys({"block", "inertiaScaling"});
+    refuseInertiaScaling(props, "inertiaScaling",
+        "the floating block's answer is its motion (the heave and its period, sqrt(s) times longer with the inertia "
+        "scaled, and the time it takes to come to rest), not a quasi-static load");
     const Dictionary& block = props.subDict("block");
     block.checkKeys({"lattice", "particleRadius", "spheres", "releaseDepth"});
     s.lattice = blockLatticeNames.get(block, "lattice");

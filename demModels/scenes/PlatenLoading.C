@@ -3,6 +3,8 @@
 
 #include "AtomicFile.H"
 #include "Dictionary.H"
+#include "ForceCurveAnalysis.H"
+#include "InertiaScaling.H"
 #include "IceBondForces.H"
 #include "InputError.H"
 #include "Json.H"
@@ -67,6 +69,7 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("blowUpFactor", "expected a number >= 1 (the kinetic energy allowed per unit of energy put in)");
     }
+    maxKineticToWork = readMaxKineticToWorkRatio(control);
     sampleInterval = control.getPositiveScalarOrDefault("sampleInterval", 2e-4);
     writeInterval = control.getPositiveScalarOrDefault("writeInterval", 0.01);
     checkpointInterval = control.getPositiveScalarOrDefault("checkpointInterval", 0.02);
@@ -74,6 +77,14 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("sampleInterval", "must not exceed writeInterval");
     }
+}
+
+
+void PlatenLoadingControl::readInertiaScaling(const Dictionary& d, const std::string& key)
+{
+    inertiaScaling = iceDEM::readInertiaScaling(d, key);
+    inertiaScalingFile = d.fileName();
+    inertiaScalingEntry = d.entryPath(key);
 }
 
 
@@ -139,6 +150,17 @@ PlatenLoading::~PlatenLoading() = default;
 
 
 
+double PlatenLoading::time(const LiggghtsInstance& lmp) const
+{
+    // Where the scene changed the step at the loading's start, LIGGGHTS' own
+    // clock (atime, atimestep) is not restored to the last bit by a resume;
+    // this one is the same in the uninterrupted and the resumed run.
+    return stepChangedAtStart_
+        ? state_.startTime + static_cast<double>(lmp.step() - state_.liggghtsStepAtStart) * state_.dt
+        : lmp.time();
+}
+
+
 std::string PlatenLoading::restartFile(const Checkpoint& c) const
 {
     return context_.path("DEM/checkpoint/liggghts.restart." + std::to_string(c.state.steps));
@@ -190,7 +212,9 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
             + std::to_string(update.ntimestep) + ", the application's checkpoint at step "
             + std::to_string(expectedStep) + "; delete the folder and start again");
     }
-    update.atime = update.ntimestep * state_.dt;
+    update.atime = stepChangedAtStart_
+        ? c.state.startTime + (update.ntimestep - c.state.liggghtsStepAtStart) * state_.dt
+        : update.ntimestep * state_.dt;
     update.atimestep = update.ntimestep;
     bonds.restoreBonds(c.bonds);
     resumedBonds_ = c.bonds;
@@ -201,11 +225,11 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
     particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(context_.path("VTK/particles.pvd")));
     bondsPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(context_.path("VTK/bonds.pvd")));
     // Frames written after the checkpoint by the killed run are redone.
-    particlesPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
-    bondsPvd_->removeAfter(lmp.time() + 0.5 * state_.dt);
+    particlesPvd_->removeAfter(time(lmp) + 0.5 * state_.dt);
+    bondsPvd_->removeAfter(time(lmp) + 0.5 * state_.dt);
     resumed_ = true;
     context_.log("Resumed from the checkpoint at step " + std::to_string(state_.steps) + ", time "
-        + formatNumber(lmp.time()) + " s");
+        + formatNumber(time(lmp)) + " s");
 }
 
 
@@ -221,6 +245,7 @@ void PlatenLoading::run
     try
     {
         load(lmp, bonds, hooks);
+        checkQuasiStatic();
         writeSummary();
     }
     catch (const std::exception& e)
@@ -299,6 +324,12 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
     std::ostringstream plan;
     plan << "Platen at " << speed << " m/s; " << stepsPerSample << " steps per force sample, at most "
          << maxSteps << " steps (" << control_.maxTravel * 1e3 << " mm of travel after contact)";
+    if (control_.inertiaScaling != 1.0)
+    {
+        plan << "; inertia scaled by " << control_.inertiaScaling << " (" << control_.inertiaScalingFile << ": "
+             << control_.inertiaScalingEntry << "; time step " << dt << " s), refused if the kinetic energy exceeds "
+             << control_.maxKineticToWork << " of the platen's work (median over the loading)";
+    }
     context_.log(plan.str());
 
     if (resumed_)
@@ -312,9 +343,9 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
     }
     else
     {
-        st.startTime = lmp.time();
+        st.startTime = lmp.time();   // LIGGGHTS' clock; the loading's counts from here (time())
         st.liggghtsStepAtStart = lmp.step();
-        st.kineticAtStart = totalKineticEnergy(lmp);
+        st.kineticAtStart = control_.inertiaScaling * totalKineticEnergy(lmp);
         writeFrame(lmp, bonds);
     }
     firstStep_ = st.steps;
@@ -336,7 +367,7 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
         ++st.sample;
         sample(lmp, bonds, hooks);
 
-        const double travel = control_.travelAt(lmp.time() - st.startTime);
+        const double travel = control_.travelAt(time(lmp) - st.startTime);
         // Half load counts once the force stays below it; a dip that recovers
         // (noise, a crack that arrests) does not.
         if (st.previousForce >= 0.5 * st.peak)
@@ -370,7 +401,7 @@ void PlatenLoading::load(LiggghtsInstance& lmp, IceBondForces& bonds, const Hook
             const double elapsed = std::chrono::duration<double>(now - loopStart).count();
             const double remaining = elapsed / (st.steps - firstStep_) * (maxSteps - st.steps);
             std::ostringstream line;
-            line << std::fixed << std::setprecision(1) << "t = " << lmp.time() * 1e3 << " ms"
+            line << std::fixed << std::setprecision(1) << "t = " << time(lmp) * 1e3 << " ms"
                  << "  travel " << travel * 1e3 << " mm  force " << st.previousForce * 1e-3 << " kN"
                  << "  peak " << st.peak * 1e-3 << " kN  broken " << breakage_.size()
                  << "  " << std::setprecision(0) << (st.steps - firstStep_) * particleCount_ / elapsed
@@ -404,25 +435,90 @@ long PlatenLoading::stepsPerSampleInWholeAdvances(long stepsPerAdvance) const
 void PlatenLoading::logEnd(double wallSeconds) const
 {
     context_.log("End: " + std::to_string(state_.steps) + " steps in " + formatDuration(wallSeconds) + ", "
-        + std::to_string(breakage_.size()) + " bonds broken");
+        + std::to_string(breakage_.size()) + " bonds broken; kinetic energy / platen work "
+        + formatNumber(kineticToWorkRatio()) + " (median over the loading), kinetic / bond energy near the peak "
+        + formatNumber(kineticToElasticNearPeak())
+        + (control_.inertiaScaling != 1.0 ? " (inertia scaled by " + formatNumber(control_.inertiaScaling) + ")" : "")
+        + (kineticToWorkRatio() > control_.maxKineticToWork
+            ? "; above " + formatNumber(control_.maxKineticToWork) + ", the limit of a run with inertia scaling:"
+              " not quasi-static by it"
+            : std::string()));
+}
+
+
+std::vector<double> PlatenLoading::curveColumn(int column) const
+{
+    std::vector<double> values;
+    for (std::size_t k = 0; k < curve_.nRows(); ++k)
+    {
+        values.push_back(curve_.row(k)[column]);
+    }
+    return values;
+}
+
+
+double PlatenLoading::kineticToElasticNearPeak() const
+{
+    return iceDEM::kineticToElasticNearPeak(curveColumn(forceColumn), curveColumn(kineticColumn),
+                                            curveColumn(bondEnergyColumn));
+}
+
+
+double PlatenLoading::kineticToWorkRatio() const
+{
+    return iceDEM::kineticToWork(curveColumn(travelColumn), curveColumn(forceColumn), curveColumn(kineticColumn));
+}
+
+
+void PlatenLoading::addQuasiStaticFigures(Json& j) const
+{
+    j["inertia_scaling"] = control_.inertiaScaling;
+    j["kinetic_to_work_ratio"] = kineticToWorkRatio();
+    j["kinetic_to_work_limit"] = control_.maxKineticToWork;
+    j["kinetic_to_elastic_energy_near_peak"] = kineticToElasticNearPeak();
+}
+
+
+void PlatenLoading::checkQuasiStatic() const
+{
+    const double ratio = kineticToWorkRatio();
+    if (control_.inertiaScaling == 1.0 || !(ratio > control_.maxKineticToWork))
+    {
+        return;
+    }
+    // The kinetic energy grows as s at a given platen speed.
+    const double largest = control_.inertiaScaling * control_.maxKineticToWork / ratio;
+    throw InputError
+    (
+        control_.inertiaScalingFile, control_.inertiaScalingEntry,
+        formatNumber(control_.inertiaScaling) + " made the loading dynamic: its kinetic energy is "
+        + formatNumber(ratio) + " of the platen's work (median over the loading), above the limit "
+        + formatNumber(control_.maxKineticToWork) + " (system/controlDict maxKineticToWorkRatio); the force curve"
+        " is in postProcessing/platenForce.csv. "
+        + (largest >= 2.0
+            ? "A factor of at most about " + formatNumber(std::floor(largest)) + " would stay below it (the ratio grows"
+              " with the factor)"
+            : std::string("No factor above 1 stays below it at this platen speed (the ratio grows with the factor):"
+              " use 1, or a slower platen with a factor"))
+    );
 }
 
 
 void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks)
 {
     LoadingState& st = state_;
-    const double travel = control_.travelAt(lmp.time() - st.startTime);
+    const double travel = control_.travelAt(time(lmp) - st.startTime);
     const double force = hooks.force();
     st.platenWork += 0.5 * (force + st.previousForce) * (travel - st.previousTravel);
     st.previousTravel = travel;
     st.previousForce = force;
-    const double kinetic = totalKineticEnergy(lmp);
+    const double kinetic = control_.inertiaScaling * totalKineticEnergy(lmp);
     const double elastic = sumOverRanks(context_.comm(), bonds.localBondEnergy());
     for (const BreakEvent& e : gatherBreakEvents(context_.comm(), bonds.takeLocalBreakEvents()))
     {
         breakage_.append(e);
     }
-    std::vector<double> row{lmp.time(), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic};
+    std::vector<double> row{time(lmp), travel, force, static_cast<double>(breakage_.size()), kinetic, elastic};
     if (hooks.extras)
     {
         const std::vector<double> extra = hooks.extras();
@@ -440,7 +536,7 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
                 "(absorbing far field; " + std::to_string(st.frozenEjecta) + " in all)");
         }
     }
-    checkHealth(lmp, bonds, kinetic);
+    checkHealth(lmp, bonds, hooks, kinetic);
 
     if (force > st.peak)
     {
@@ -451,16 +547,20 @@ void PlatenLoading::sample(LiggghtsInstance& lmp, IceBondForces& bonds, const Ho
 }
 
 
-void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, double kinetic) const
+void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, const Hooks& hooks, double kinetic) const
 {
     // A blown-up run: NaN forces, lost bonds or particles, or kinetic energy
     // that the platen never put in.
     std::string failure = bonds.failure();
+    if (failure.empty() && hooks.failure)
+    {
+        failure = hooks.failure();
+    }
     const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp.engine().atom->nlocal));
     if (failure.empty() && present != particleCount_)
     {
         failure = std::to_string(particleCount_ - present) + " particle(s) left the simulation box by time "
-            + formatNumber(lmp.time()) + " s (step " + std::to_string(lmp.step()) + ")";
+            + formatNumber(time(lmp)) + " s (step " + std::to_string(lmp.step()) + ")";
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
     MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, context_.comm());
@@ -469,8 +569,10 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, dou
         std::ostringstream msg;
         msg << "kinetic energy " << kinetic << " J exceeds " << control_.blowUpFactor << " times the work done by the platen ("
             << state_.platenWork << " J) and the kinetic energy at the start (" << state_.kineticAtStart
-            << " J) at time " << lmp.time() << " s, step " << lmp.step()
-            << ": the run is unstable (lower timeStep.factor; a body that stores energy of its own, e.g. floating"
+            << " J) at time " << time(lmp) << " s, step " << lmp.step()
+            << ": the run is unstable (lower timeStep.factor"
+            << (control_.inertiaScaling != 1.0 ? " or " + control_.inertiaScalingEntry : std::string())
+            << "; a body that stores energy of its own, e.g. floating"
             << " ice that falls when it breaks, may need a larger blowUpFactor in system/controlDict)";
         failure = msg.str();
         anyFailed = 1;
@@ -527,8 +629,8 @@ void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
         particlesPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/particles.pvd"));
         bondsPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/bonds.pvd"));
     }
-    particlesPvd_->add(lmp.time(), particlesFile);
-    bondsPvd_->add(lmp.time(), bondsFile);
+    particlesPvd_->add(time(lmp), particlesFile);
+    bondsPvd_->add(time(lmp), bondsFile);
     breakage_.writeHdf5(context_.path("postProcessing/breakage.h5"));
     curve_.write(context_.path("postProcessing/platenForce.csv"));
 }

@@ -10,6 +10,7 @@
 #include "FreezeBonding.H"
 #include "GivenAreaCorrection.H"
 #include "IceBondForces.H"
+#include "InertiaScalingFix.H"
 #include "InputError.H"
 #include "Json.H"
 #include "LiggghtsInstance.H"
@@ -127,8 +128,22 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
 
     const Dictionary& t = d.subDict("test");
     t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap",
-                 "referenceFlexuralStrength"});
+                 "referenceFlexuralStrength", "inertiaScaling"});
     s.test = t.getChoice("type", RidgeLoadTest::names());
+    s.loading.readInertiaScaling(t);
+    if (s.loading.inertiaScaling != 1.0 && !RidgeLoadTest::New(s.test, s)->integratesParticles())
+    {
+        t.fail("inertiaScaling", formatNumber(s.loading.inertiaScaling) + " is not allowed here (only 1): "
+               + s.test + " moves the layer rigidly and integrates no particle's motion, and its force is the sum "
+               "of the layer's forces: there is no inertia to scale");
+    }
+    if (s.loading.inertiaScaling != 1.0 && WaterProperties::readCase(s.caseDir, true).level == WaterLevel::cfd)
+    {
+        t.fail("inertiaScaling", formatNumber(s.loading.inertiaScaling) + " is not allowed at the cfd level "
+               "(only 1): OpenFOAM's water exchanges momentum with the particles every coupling step and its own "
+               "inertia is not scaled, so the coupled dynamics would be neither the true one nor a uniformly "
+               "slowed one (not validated; in still water, ridgeDEM, the added mass is scaled with the particles')");
+    }
     if (t.found("referenceFlexuralStrength"))
     {
         s.referenceFlexuralStrength = t.getPositiveScalarOrDefault("referenceFlexuralStrength", 1.0);
@@ -151,7 +166,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     control.checkKeys
     ({
         "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
     return s;
@@ -230,7 +245,12 @@ void RidgeScene::run()
 }
 
 
-void RidgeScene::chooseContactsAndStep(const std::vector<ParticleSpec>& particles, const IceProperties& ice)
+void RidgeScene::chooseContactsAndStep
+(
+    const std::vector<ParticleSpec>& particles,
+    const IceProperties& ice,
+    double inertiaScaling
+)
 {
     double minRadius = HUGE_VAL, meanDiameter = 0.0;
     for (const ParticleSpec& p : particles)
@@ -240,7 +260,7 @@ void RidgeScene::chooseContactsAndStep(const std::vector<ParticleSpec>& particle
     }
     const double minMass = ice.material.density * 4.0 / 3.0 * M_PI * std::pow(minRadius, 3);
     contact_ = ContactParameters::of(ice, meanDiameter, minMass);
-    const TimeStepLimits limits = timeStepLimits(ice, minRadius, ice.maxBondsPerParticle);
+    const TimeStepLimits limits = timeStepLimits(ice, minRadius, ice.maxBondsPerParticle, inertiaScaling);
     dt_ = chooseTimeStep(ice, limits, context_.path("constant/iceProperties"));
     particleCount_ = static_cast<long>(particles.size());
 }
@@ -299,7 +319,8 @@ void RidgeScene::startLiggghts
     const std::vector<ParticleSpec>& particles,
     const std::vector<int>& types,
     const IceProperties& ice,
-    const std::string& readParticles
+    const std::string& readParticles,
+    double dt
 )
 {
     double maxRadius = 0.0, top = 0.0;
@@ -330,7 +351,7 @@ void RidgeScene::startLiggghts
         {"readParticles", "\"" + readParticles + "\""},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice, maxRadius, skin))},
         {"neighbourSkin", exactNumber(skin)},
-        {"dt", exactNumber(dt_)},
+        {"dt", exactNumber(dt)},
         {"gravity", exactNumber(water_.gravity.norm())},
         {"boxWidth", exactNumber(settings_.layer.width)},
         {"layerFirstTag", std::to_string(layerFirstTag_)}
@@ -414,7 +435,7 @@ void RidgeScene::assemble()
     std::vector<int> types(layout.particles.size(), mobileType);
     for (std::size_t k = layout.keelParticles; k < types.size(); ++k) types[k] = fixedType;
     chooseContactsAndStep(layout.particles, soft);
-    startLiggghts(layout.particles, types, soft, "read_data " + context_.path("DEM/ridge.data"));
+    startLiggghts(layout.particles, types, soft, "read_data " + context_.path("DEM/ridge.data"), dt_);
 
     waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
     waterForces_->defineForceFix();
@@ -647,7 +668,7 @@ std::vector<double> RidgeScene::waterColumns()
     const double share = water.buoyancy(submerged - submergedAtStart_);
     const double platenBuoyancy = test_->loadingBodyBuoyancy
     (
-        water, settings_.loading.travelAt(lmp_->time() - loading_->state().startTime)
+        water, settings_.loading.travelAt(loading_->time(*lmp_) - loading_->state().startTime)
     );
     std::vector<double> columns{buoyancy, submerged, share, platenBuoyancy};
     if (externalWater_)
@@ -756,7 +777,15 @@ void RidgeScene::load()
             topUnderPlaten = std::max(topUnderPlaten, s.position.z() + s.radius);
         }
     }
+    // The ridge settles with the true inertia (a settling is no quasi-static
+    // loading: its motion is the answer), then loads with the scaled one.
     chooseContactsAndStep(particles, ice_);
+    const double settleDt = dt_;
+    const double inertiaScaling = settings_.loading.inertiaScaling;
+    if (inertiaScaling != 1.0)
+    {
+        chooseContactsAndStep(particles, ice_, inertiaScaling);
+    }
     std::vector<std::string> waterColumnNames{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"};
     if (externalWater_)
     {
@@ -773,6 +802,7 @@ void RidgeScene::load()
         particleCount_, fixedType, waterColumnNames
     );
     loading_->setInputs(loadingInputs(ridgeInputs));
+    loading_->setTimeStepChangedAtStart(settleDt != dt_);
     std::unique_ptr<Checkpoint> checkpoint;
     if (settings_.resume && loading_->checkpointExists())
     {
@@ -781,7 +811,8 @@ void RidgeScene::load()
     startLiggghts
     (
         particles, types, ice_,
-        checkpoint ? "read_restart " + loading_->restartFile(*checkpoint) : "read_data " + context_.path("DEM/ridge.data")
+        checkpoint ? "read_restart " + loading_->restartFile(*checkpoint) : "read_data " + context_.path("DEM/ridge.data"),
+        checkpoint ? dt_ : settleDt
     );
     if (!test_->integratesParticles())
     {
@@ -823,7 +854,7 @@ void RidgeScene::load()
     }
     lmp_->command("run 0");
 
-    const long settleSteps = test_->settlesFirst() ? std::lround(settings_.settleTime / dt_) : 0;
+    const long settleSteps = test_->settlesFirst() ? std::lround(settings_.settleTime / settleDt) : 0;
     if (!checkpoint && settleSteps > 0)
     {
         // The bonds were made at the pressed geometry with no load in them:
@@ -837,6 +868,11 @@ void RidgeScene::load()
         context_.log("Settled under gravity and buoyancy for " + formatNumber(settings_.settleTime) + " s: kinetic energy "
             + formatNumber(totalKineticEnergy(*lmp_)) + " J");
     }
+    if (!checkpoint && dt_ != settleDt)
+    {
+        // LIGGGHTS' clock keeps the settling's time and counts on with this step.
+        lmp_->command("timestep " + exactNumber(dt_));
+    }
     // The test moves off smoothly (loading.rampTravel): a sudden start would
     // hit the ice with a force spike.
     const long startStep = checkpoint ? checkpoint->state.liggghtsStepAtStart : lmp_->step();
@@ -844,6 +880,12 @@ void RidgeScene::load()
     const std::string travel = settings_.loading.travelFormula(startStep, dt_);
     lmp_->command("variable zero equal 0");
     test_->startMotion(*lmp_, speed, travel);
+    if (inertiaScaling != 1.0)
+    {
+        // The last force fix: after the water's added mass, with which it multiplies.
+        inertia_ = std::make_unique<InertiaScalingFix>(*lmp_, inertiaScaling);
+        inertia_->define();
+    }
     // The loading runs skip LIGGGHTS' set-up (pre no); a moving mesh is only
     // registered as moving by one, so the motion gets its own.
     lmp_->command("run 0 post no");
@@ -852,12 +894,21 @@ void RidgeScene::load()
     msg << "Loading: " << particleCount_ << " particles (" << geometry.keelParticles << " keel, "
         << geometry.layerParticles << " layer), " << ridge.bonds.size() << " bonds, depth "
         << geometry.depth() << " m, water surface " << ridge.waterLevel << " m, time step " << dt_ << " s";
+    if (inertiaScaling != 1.0)
+    {
+        msg << " (inertia scaled by " << inertiaScaling << "; settled with the true inertia at " << settleDt << " s)";
+    }
     context_.log(msg.str());
 
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
     hooks.extras = [this] { return waterColumns(); };
     hooks.stopEjecta = [this] { return stopParticlesAtBoxEdge(); };
+    hooks.failure = [this]
+    {
+        std::string f = waterForces_ ? waterForces_->failure() : std::string();
+        return f.empty() && inertia_ ? inertia_->failure() : f;
+    };
     if (externalWater_)
     {
         hooks.advance = externalWater_->advance;
@@ -941,6 +992,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["layer_particles"] = g.layerParticles;
     j["platen_speed_m_per_s"] = settings_.loading.speed;
     j["ejected_particles_stopped"] = long(loading_->state().frozenEjecta);
+    loading_->addQuasiStaticFigures(j);
     j["steps"] = loading_->state().steps;
     j["dt"] = dt_;
     j["ranks"] = context_.ranks();

@@ -11,6 +11,7 @@
 #include "BondModel.H"
 #include "CsvWriter.H"
 #include "Dictionary.H"
+#include "InertiaScaling.H"
 #include "HydrostaticWater.H"
 #include "IceBondForces.H"
 #include "FreezeBonding.H"
@@ -69,7 +70,11 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
         .parse(argc, argv);
     const std::string file = s.caseDir + "/constant/rubbleProperties";
     const Dictionary d = Dictionary::readFile(file);
-    d.checkKeys({"box", "blocks", "settling", "compaction", "ends"});
+    d.checkKeys({"box", "blocks", "settling", "compaction", "ends", "inertiaScaling"});
+    refuseInertiaScaling(d, "inertiaScaling",
+        "rubble settling is no quasi-static loading: how the blocks fall, tilt and come to rest under gravity and "
+        "buoyancy is the answer, and with the inertia scaled every motion is sqrt(s) times slower (the keel would "
+        "settle later or differently, and the stop rule on the kinetic energy would mean another thing)");
     const Dictionary& box = d.subDict("box");
     box.checkKeys({"length", "width", "height"});
     s.boxLength = box.getPositiveScalarOrDefault("length", s.boxLength);

@@ -94,7 +94,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
 {
     ThreePointBendingSettings s;
     const Dictionary props = Dictionary::readFile(caseDir + "/constant/bendingProperties");
-    props.checkKeys({"beam", "supports", "platen", "packing", "targetStrength"});
+    props.checkKeys({"beam", "supports", "platen", "packing", "targetStrength", "inertiaScaling"});
 
     const Dictionary& beam = props.subDict("beam");
     beam.checkKeys({"length", "width", "thickness"});
@@ -159,9 +159,10 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
     });
     s.loading.readControl(control);
+    s.loading.readInertiaScaling(props);
     s.loading.speed = s.platenSpeed;
     s.loading.initialGap = s.initialGap;
     s.loading.fixedSteps = options.steps;
@@ -221,7 +222,8 @@ void ThreePointBendingScene::buildParticles()
     spec.radiusSpread = settings_.radiusSpread;
     spec.targetSolidFraction = settings_.solidFraction;
     spec.seed = settings_.seed;
-    body_ = buildBondedBody(spec, ice_, context_.path(icePropertiesFile_), {}, [this](const std::string& l) { context_.log(l); });
+    body_ = buildBondedBody(spec, ice_, context_.path(icePropertiesFile_), {},
+                            [this](const std::string& l) { context_.log(l); }, settings_.loading.inertiaScaling);
 
     const double halfSlab = settings_.particleDiameter;
     const double midHeight = 0.5 * settings_.thickness;
@@ -324,7 +326,7 @@ void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
     lmp_ = context_.startLiggghts(variables, "DEM/in.threePointBending");
     LiggghtsInstance& lmp = *lmp_;
-    bonds_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
+    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
 }
 
 
@@ -430,7 +432,8 @@ void ThreePointBendingScene::run()
     hooks.force = [this] { return platenForce(); };
     hooks.extras = [this] { return std::vector<double>{midspanDeflection(), supportReaction()}; };
     hooks.stopEjecta = [this] { return stopEjecta(); };
-    loading_->run(*lmp_, *bonds_, hooks, [this] { writeSummary(context_.wallSeconds()); });
+    hooks.failure = [this] { return forces_.failure(); };
+    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(context_.wallSeconds()); });
     loading_->logEnd(context_.wallSeconds());
 }
 
@@ -517,6 +520,7 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     j["support_reaction_at_failure_N"] = curve.row(peakIndex).back();
     j["contact_onset_travel_m"] = onset;
     j["kinetic_to_elastic_energy_at_peak"] = state.kineticToElasticAtPeak;
+    loading_->addQuasiStaticFigures(j);
     j["broken_bonds"] = long(breaks.size());
     j["broken_bonds_by_mode"] = modes;
     j["share_of_breaks_within_10pct_of_span_from_centre"] = breaks.empty() ? 0.0 : double(centreBreaks) / breaks.size();

@@ -22,5 +22,6 @@ check badDiameter       's/particleDiameter [^;]*;/particleDiameter abc;/' "pack
 check particleTooBig    's/ particleDiameter [^;]*;/ particleDiameter 0.12;/' "packing.particleDiameter"
 check unknownEntry      's/span /spam 1; span /'               "supports.spam"
 check badOption         ''                                     "-thickness" -thickness -0.1
+check inertiaBelowOne   's/^inertiaScaling [^;]*;/inertiaScaling 0.5;/' "bendingProperties: entry 'inertiaScaling'"
 
 report

@@ -21,6 +21,9 @@ check badParticleCount  constant/beamProperties 's/particles .*;/particles abc;/
 check tooFewBondSlots   constant/iceProperties  's/maxBondsPerParticle .*;/maxBondsPerParticle 2;/' "maxBondsPerParticle"
 check unreachablePacking constant/beamProperties 's/solidFraction .*;/solidFraction 0.73;/' "packing.solidFraction"
 check missingFile       constant/beamProperties delete                         "beamProperties"
+check inertiaBelowOne   constant/beamProperties 's/^inertiaScaling .*;/inertiaScaling 0.5;/' "beamProperties: entry 'inertiaScaling'"
+check inertiaTooLarge   constant/beamProperties 's/^inertiaScaling .*;/inertiaScaling 1e6;/' "beamProperties: entry 'inertiaScaling'"
+check inertiaNotANumber constant/beamProperties 's/^inertiaScaling .*;/inertiaScaling fast;/' "beamProperties: entry 'inertiaScaling'"
 check missingScript     DEM/in.levelIceBeam     delete                         "in.levelIceBeam"
 
 report

@@ -22,5 +22,7 @@ check missingGravity    constant/g                  delete                      
 check heavyIce          constant/iceProperties      's/density[^;]*;/density 1100;/'        "material.density"
 check badLattice        constant/blockProperties    's/lattice[^;]*;/lattice random;/'      "block.lattice"
 check badSphereCount    constant/blockProperties    's/spheres[^;]*;/spheres (8 6 0.5);/'   "block.spheres"
+# Inertia scaling is refused: the heave (its period grows with sqrt(s)) is the floating block's answer.
+check inertiaScaling    constant/blockProperties    's/^block$/inertiaScaling 10;\nblock/'  "10 is not allowed here (only 1): the floating block's answer is its motion (the heave"
 
 report

@@ -213,6 +213,11 @@ def bad_input(work, dem_bin, cfd_bin):
            ["couplingProperties", "couplingInterval", "sampleInterval"])
 
     iceCases.set_entry(os.path.join(case, "constant", "couplingProperties"), "cfd.couplingInterval", 84)
+    props = os.path.join(case, "constant", "ridgeProperties")
+    iceCases.set_entry(props, "test.inertiaScaling", 10)
+    expect("inertia scaling at the cfd level", mpi + [app, "-case", case], case,
+           ["ridgeProperties", "test.inertiaScaling", "not allowed at the cfd level"])
+    iceCases.set_entry(props, "test.inertiaScaling", 1)
     iceCases.set_entry(os.path.join(case, "system", "blockMeshDict"), "surfaceZ", 0.95)
     foam(["blockMesh", "-case", case], case, "log.blockMesh")
     expect("mesh top above the water surface", mpi + [app, "-case", case], case,

@@ -14,6 +14,8 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
   badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
             message naming the entry and a non-zero exit
+  resumeInertia  the same with the inertia scaled by 10 (test.inertiaScaling): settled with the
+            true inertia, loaded with the scaled one, resumed to the last bit
   faults    (f) a punch SIGKILLed three times, each a random moment after a new checkpoint,
             and resumed each time, ends with the uninterrupted run's force curve to the last bit
   stale     (e) a saved ridge and a checkpoint are never used against other inputs: -stage load
@@ -123,16 +125,35 @@ def punch(work, bin_dir):
     check_buoyancy_share(case, level)
 
 
-def resume(work, bin_dir):
+def resume(work, bin_dir, inertia=1):
     """A punch killed after a checkpoint and resumed gives the uninterrupted run's force curve to
     the last bit. The ridge settles before the platen moves: LIGGGHTS counts those steps, the
-    checkpoint only the loading's."""
+    checkpoint only the loading's. With the inertia scaled (inertia > 1) the ridge settles with
+    the true inertia and its step, then loads with the scaled ones: the resumed run's clock
+    continues from the loading's start with the loading's step, as the uninterrupted run's."""
     controls = (("maxTravel", 0.012), ("writeInterval", 0.004), ("checkpointInterval", 0.003),
                 ("stopAfterHalfLoad", "no"))
+    entries = PUNCH_ENTRIES + ((("test.inertiaScaling", inertia),) if inertia != 1 else ())
+    folder = "resume" if inertia == 1 else f"resumeInertia{inertia:g}"
     app = os.path.join(bin_dir, "ridgeDEM")
-    whole = ridge_case("rubblePunch", os.path.join(work, "resume", "whole"), work, controls, PUNCH_ENTRIES)
+
+    def case(name):
+        target = ridge_case("rubblePunch", os.path.join(work, folder, name), work, controls, entries)
+        if inertia != 1:
+            # 12 mm from the first contact is no quasi-static loading to judge the factor by.
+            with open(os.path.join(target, "system", "controlDict"), "a") as f:
+                f.write("maxKineticToWorkRatio 1e30;\n")
+        return target
+
+    whole = case("whole")
     iceCases.run_app(app, whole, 1, ["-stage", "all"], "log.ridgeDEM")
-    killed = ridge_case("rubblePunch", os.path.join(work, "resume", "killed"), work, controls, PUNCH_ENTRIES)
+    if inertia != 1:
+        s = iceCases.summary(whole)
+        log = open(os.path.join(whole, "log.ridgeDEM")).read()
+        check(s["inertia_scaling"] == inertia and "settled with the true inertia" in log,
+              f"the punch ran with the inertia scaled by {s['inertia_scaling']:g} after settling with the true one "
+              f"(time step {s['dt']:.4g} s)")
+    killed = case("killed")
     checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
     iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "all"], checkpoint, "log.ridgeDEM.1")
     finished = iceCases.finished(killed)
@@ -323,6 +344,28 @@ def bad_input(work, bin_dir):
     expect("keelOfAnotherBox", lambda p: iceCases.set_entry(p, "box.length", 1.0),
            ["ridgeProperties", "'box'", "another box"])
 
+    # Inertia scaling (issue 17): range-checked, and refused where nothing is integrated
+    # (the keel-bond tests hold the layer and sum its forces) and in the rubble's settling.
+    def inertia(value):
+        def edit(path):
+            text = open(path).read()
+            at = text.index("\ntest\n{") + len("\ntest\n{")
+            open(path, "w").write(text[:at] + f"\n    inertiaScaling {value};" + text[at:])
+        return edit
+    expect("inertiaInKeelBondTest", inertia(10), ["ridgeProperties", "test.inertiaScaling",
+                                                 "integrates no particle's motion"])
+    expect("inertiaBelowOne", inertia(0.5), ["ridgeProperties", "test.inertiaScaling", "[1, 10000]"])
+    rubble = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(work, "bad", "inertiaInSettling"))
+    props = os.path.join(rubble, "constant", "rubbleProperties")
+    text = open(props).read()
+    open(props, "w").write(text.replace("\nbox\n", "\ninertiaScaling 10;\n\nbox\n", 1))
+    r = subprocess.run(["mpirun", "-np", "1", "--oversubscribe", os.path.join(bin_dir, "rubbleDEM"), "-case", rubble,
+                        "-stage", "settle"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    words = ["rubbleProperties", "inertiaScaling", "rubble settling is no quasi-static loading"]
+    check(r.returncode == 1 and all(w in r.stdout for w in words),
+          f"inertiaInSettling: exit {r.returncode}, message names {words}: "
+          + next((line for line in r.stdout.splitlines() if "inertiaScaling" in line), r.stdout[-300:]).strip())
+
 
 def faults(work, bin_dir):
     import random
@@ -417,6 +460,8 @@ def main():
         punch(work, bin_dir)
     elif step == "resume":
         resume(work, bin_dir)
+    elif step == "resumeInertia":
+        resume(work, bin_dir, 10)
     elif step == "compare":
         compare(work)
     elif step == "pullUp":

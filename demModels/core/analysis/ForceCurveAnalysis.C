@@ -227,4 +227,78 @@ double contactOnset
     return notANumber;
 }
 
+namespace
+{
+
+double median(std::vector<double> values)
+{
+    if (values.empty())
+    {
+        return 0.0;
+    }
+    const std::size_t n = values.size();
+    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+    const double upper = values[n / 2];
+    if (n % 2 == 1)
+    {
+        return upper;
+    }
+    return 0.5 * (*std::max_element(values.begin(), values.begin() + n / 2) + upper);
+}
+
+} // namespace
+
+
+double kineticToElasticNearPeak
+(
+    const std::vector<double>& force,
+    const std::vector<double>& kinetic,
+    const std::vector<double>& elastic,
+    double halfFraction
+)
+{
+    if (kinetic.size() != force.size() || elastic.size() != force.size())
+    {
+        throw std::invalid_argument("kineticToElasticNearPeak: force, kinetic and elastic differ in length");
+    }
+    if (force.empty())
+    {
+        return 0.0;
+    }
+    const std::size_t peak = std::max_element(force.begin(), force.end()) - force.begin();
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k <= peak; ++k)
+    {
+        if (force[k] >= halfFraction * force[peak] && elastic[k] > 0.0)
+        {
+            ratios.push_back(kinetic[k] / elastic[k]);
+        }
+    }
+    return median(ratios);
+}
+
+double kineticToWork
+(
+    const std::vector<double>& travel,
+    const std::vector<double>& force,
+    const std::vector<double>& kinetic
+)
+{
+    if (force.size() != travel.size() || kinetic.size() != travel.size())
+    {
+        throw std::invalid_argument("kineticToWork: travel, force and kinetic differ in length");
+    }
+    std::vector<double> ratios;
+    double work = 0.0;
+    for (std::size_t k = 1; k < travel.size(); ++k)
+    {
+        work += 0.5 * (force[k] + force[k - 1]) * (travel[k] - travel[k - 1]);
+        if (work > 0.0)
+        {
+            ratios.push_back(kinetic[k] / work);
+        }
+    }
+    return median(ratios);
+}
+
 } // namespace iceDEM

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace iceDEM
 {
@@ -14,11 +15,18 @@ TimeStepLimits timeStepLimits
 (
     const IceProperties& props,
     double minRadius,
-    int maxNeighbours
+    int maxNeighbours,
+    double inertiaScaling
 )
 {
     TimeStepLimits limits;
-    const double rho = props.material.density;
+    if (!(inertiaScaling >= 1.0))
+    {
+        throw std::invalid_argument("timeStepLimits: inertiaScaling must be >= 1");
+    }
+    limits.inertiaScaling = inertiaScaling;
+    // The density the equations of motion see (inertia scaling), not the weight's.
+    const double rho = inertiaScaling * props.material.density;
     const double mass = rho * 4.0 / 3.0 * M_PI * std::pow(minRadius, 3);
     const double rotationalInertia = 0.4 * mass * minRadius * minRadius;
 
@@ -76,8 +84,12 @@ double chooseTimeStep
             << limits.stiffestSpring << " s, and with up to " << limits.maxNeighbours
             << " bonds/contacts on one particle the program accepts at most "
             << limits.limit << " s (factor "
-            << limits.limit / limits.recommended * props.timeStep.factor
-            << "). Lower " << (fixed ? "timeStep.deltaT" : "timeStep.factor") << ".";
+            << limits.limit / limits.recommended * props.timeStep.factor << ")";
+        if (limits.inertiaScaling != 1.0)
+        {
+            msg << " with the inertia scaled by " << limits.inertiaScaling;
+        }
+        msg << ". Lower " << (fixed ? "timeStep.deltaT" : "timeStep.factor") << ".";
         throw InputError(dictPath, fixed ? "timeStep.deltaT" : "timeStep.factor", msg.str());
     }
     return dt;
