@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace iceDEM
@@ -31,23 +32,29 @@ void CompactionPlates::define()
 
 void CompactionPlates::place(double bottom, double top)
 {
-    close(bottom, top, top - bottom, 0.0);
+    close(bottom, top, bottom, top, 0.0);
 }
 
 
-void CompactionPlates::close(double bottom, double top, double finalGap, double speed)
+void CompactionPlates::close(double bottom, double top, double finalBottom, double finalTop, double speed)
 {
-    if (!(bottom < top) || !(finalGap > 0.0) || finalGap > top - bottom || speed < 0.0)
+    if (!(bottom < top) || !(finalBottom < finalTop) || speed < 0.0)
     {
-        throw std::logic_error("CompactionPlates::close: needs bottom < top, 0 < finalGap <= top - bottom, speed >= 0");
+        throw std::logic_error("CompactionPlates::close: needs bottom < top, finalBottom < finalTop, speed >= 0");
     }
     startBottom_ = bottom_ = bottom;
     startTop_ = top_ = top;
-    finalGap_ = finalGap;
-    speed_ = speed;
+    finalBottom_ = finalBottom;
+    finalTop_ = finalTop;
+    const double travel = std::max(std::abs(finalBottom - bottom), std::abs(finalTop - top));
+    duration_ = travel > 0.0 ? travel/speed : 0.0;
+    if (travel > 0.0 && !(speed > 0.0))
+    {
+        throw std::logic_error("CompactionPlates::close: the plates have to move, at no speed");
+    }
     startStep_ = lmp_.step();
-    velocity_ = 0.0;
-    closed_ = finalGap == top - bottom;
+    bottomVelocity_ = topVelocity_ = 0.0;
+    closed_ = duration_ == 0.0;
     active_ = true;
 }
 
@@ -62,15 +69,15 @@ void CompactionPlates::addForces(long step, double** fexternal)
 {
     const LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
     local_ = PlateLoads();
-    if (active_)
+    if (active_ && !closed_)
     {
-        const double travel = speed_*static_cast<double>(step - startStep_)*lmp_.engine().update->dt;
-        const double halfDistance = 0.5*(startTop_ - startBottom_ - finalGap_);
-        closed_ = travel >= halfDistance;
-        const double closing = closed_ ? halfDistance : travel;
-        bottom_ = startBottom_ + closing;
-        top_ = startTop_ - closing;
-        velocity_ = closed_ ? 0.0 : speed_;
+        const double t = static_cast<double>(step - startStep_)*lmp_.engine().update->dt;
+        closed_ = t >= duration_;
+        const double fraction = closed_ ? 1.0 : t/duration_;
+        bottom_ = startBottom_ + fraction*(finalBottom_ - startBottom_);
+        top_ = startTop_ + fraction*(finalTop_ - startTop_);
+        bottomVelocity_ = closed_ ? 0.0 : (finalBottom_ - startBottom_)/duration_;
+        topVelocity_ = closed_ ? 0.0 : (finalTop_ - startTop_)/duration_;
     }
     for (int i = 0; i < atom.nlocal; ++i)
     {
@@ -79,7 +86,7 @@ void CompactionPlates::addForces(long step, double** fexternal)
         {
             continue;
         }
-        const double f = law_.force(atom.x[i][2], atom.v[i][2], atom.radius[i], bottom_, top_, velocity_, -velocity_);
+        const double f = law_.force(atom.x[i][2], atom.v[i][2], atom.radius[i], bottom_, top_, bottomVelocity_, topVelocity_);
         if (f == 0.0)
         {
             continue;

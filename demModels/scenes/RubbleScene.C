@@ -656,6 +656,15 @@ void RubbleScene::compact()
             + formatNumber(rubble_.blockThickness) + " m): the rubbled ice (" + formatNumber(rubble_.iceVolume)
             + " m3) cannot fill so thin a layer");
     }
+    // The compacted layer is left where it floats: a uniform layer of ice
+    // fraction (1 - p) floats with rho_i/rho_w of its height under the
+    // surface (not below the box floor); in dry rubble it rests on the floor.
+    double finalBottom = 0.0;
+    if (water_.level != WaterLevel::none)
+    {
+        const double submerged = ice_.material.density/water_.hydrostatic.density;
+        finalBottom = std::max(0.0, water_.hydrostatic.surfaceLevel - submerged*finalGap);
+    }
     if (finalGap >= high - bottom)
     {
         context_.log("Compaction: the settled rubble is already at porosity " + formatNumber(compacted_.startPorosity)
@@ -665,13 +674,14 @@ void RubbleScene::compact()
     }
     else
     {
-        plates_->close(bottom, high, finalGap, settings_.compactionSpeed);
+        plates_->close(bottom, high, finalBottom, finalBottom + finalGap, settings_.compactionSpeed);
     }
     {
         std::ostringstream msg;
         msg << "Compacting: plates at z = " << bottom << " and " << high << " m (porosity "
-            << compacted_.startPorosity << " between them) close at " << settings_.compactionSpeed
-            << " m/s each to " << finalGap << " m apart (porosity " << settings_.targetPorosity
+            << compacted_.startPorosity << " between them) move at up to " << settings_.compactionSpeed
+            << " m/s to z = " << finalBottom << " and " << finalBottom + finalGap << " m, " << finalGap
+            << " m apart (porosity " << settings_.targetPorosity
             << "), then hold " << settings_.holdTime << " s, the lid backing off to " << settings_.holdPressure
         << " Pa; stops if the lid pressure exceeds "
             << settings_.maxCompactionPressure << " Pa";
@@ -682,8 +692,9 @@ void RubbleScene::compact()
     // While it holds, the lid backs off every 10 ms towards holdPressure.
     const long holdingChunk = std::max(1L, static_cast<long>(std::lround(0.01/dt_)));
     const double lidStiffness = settlingContact_.normalStiffness;
-    const double targetTop = bottom + finalGap;
-    const double closingTime = std::max(0.0, 0.5*((high - bottom) - finalGap)/settings_.compactionSpeed);
+    const double targetTop = plates_->closed() ? high : finalBottom + finalGap;
+    const double closingTime =
+        std::max(std::abs(finalBottom - bottom), std::abs(finalBottom + finalGap - high))/settings_.compactionSpeed;
     double t = 0.0, holdUntil = HUGE_VAL, nextLog = 0.0;
     PlateLoads loads;
     // The blocks slide on each other with the compaction's friction while the
