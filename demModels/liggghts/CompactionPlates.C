@@ -106,6 +106,17 @@ void CompactionPlates::addForces(long step, double** fexternal)
 }
 
 
+void CompactionPlates::backOffLid(double targetLoad, double minTop)
+{
+    const PlateLoads now = loads();
+    if (now.touchingLid > 0)
+    {
+        const double lid = top_ + (now.lid - targetLoad)/(double(now.touchingLid)*law_.normalStiffness);
+        place(bottom_, std::max(minTop, lid));
+    }
+}
+
+
 PlateLoads CompactionPlates::loads() const
 {
     double local[4] = {local_.floor, local_.lid, double(local_.touching), double(local_.touchingLid)};

@@ -291,6 +291,13 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
         lmp_->command("run " + std::to_string(n));
         steps += n;
+        if (plates_)
+        {
+            // The lid holds the compaction's pressure, not its position: held in
+            // place while the contacts stiffen, it would lock in a stress ten times
+            // that (7.2 kPa against 0.6) that the bonds take at the release.
+            plates_->backOffLid(plateHoldLoad_, plateMinTop_);
+        }
     }
     const OverlapStatistics after = overlapStatistics(particles, allPositionsByTag(*lmp_));
     std::ostringstream msg;
@@ -450,6 +457,8 @@ void RidgeScene::assemble()
         );
         plates_->define();
         plates_->place(keel.plateBottom, keel.plateTop);
+        plateHoldLoad_ = keel.plateHoldPressure*settings_.layer.length*settings_.layer.width;
+        plateMinTop_ = keel.plateTop;
     }
     bonds_ = IceBondForces::define(*lmp_, soft);
     waterForces_->defineAddedMassFix();

@@ -691,7 +691,6 @@ void RubbleScene::compact()
     const long closingChunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
     // While it holds, the lid backs off every 10 ms towards holdPressure.
     const long holdingChunk = std::max(1L, static_cast<long>(std::lround(0.01/dt_)));
-    const double lidStiffness = settlingContact_.normalStiffness;
     const double targetTop = plates_->closed() ? high : finalBottom + finalGap;
     const double closingTime =
         std::max(std::abs(finalBottom - bottom), std::abs(finalBottom + finalGap - high))/settings_.compactionSpeed;
@@ -735,13 +734,9 @@ void RubbleScene::compact()
             setFriction(settlingIce_.material.frictionCoefficient);
             first = true;   // the pair style reads the friction at the next set-up
         }
-        else if (holdUntil != HUGE_VAL && loads.touchingLid > 0)
+        else if (holdUntil != HUGE_VAL)
         {
-            // off by the overlap that carries the excess, never below the target gap
-            const double excess = loads.lid - settings_.holdPressure*area;
-            const double lid = std::max(targetTop,
-                plates_->top() + excess/(double(loads.touchingLid)*lidStiffness));
-            plates_->place(plates_->bottom(), lid);
+            plates_->backOffLid(settings_.holdPressure*area, targetTop);   // never below the target gap
         }
         if (t >= nextLog)
         {
@@ -775,6 +770,7 @@ void RubbleScene::compact()
     state.kind = SavedRubble::compactedRubble;
     state.plateBottom = compacted_.plateBottom;
     state.plateTop = compacted_.plateTop;
+    state.plateHoldPressure = settings_.holdPressure;
     if (context_.rank() == 0)
     {
         state.write(context_.path("DEM/compacted.h5"));

@@ -174,6 +174,7 @@ void SavedRubble::write(const std::string& path) const
         {
             writeScalarAttribute(root.get(), "plateBottom", plateBottom, path);
             writeScalarAttribute(root.get(), "plateTop", plateTop, path);
+            writeScalarAttribute(root.get(), "plateHoldPressure", plateHoldPressure, path);
         }
     });
 }
@@ -226,6 +227,10 @@ SavedRubble SavedRubble::readContents(const std::string& path)
     {
         r.plateBottom = readScalarAttribute(root.get(), "plateBottom", path);
         r.plateTop = readScalarAttribute(root.get(), "plateTop", path);
+        if (H5Aexists(root.get(), "plateHoldPressure") > 0)
+        {
+            r.plateHoldPressure = readScalarAttribute(root.get(), "plateHoldPressure", path);
+        }
     }
     return r;
 }
