@@ -64,10 +64,15 @@ std::unique_ptr<IceBondForces> attachIceBonds
     const IceProperties& ice,
     const BondedBody& body,
     PlatenLoading& loading,
-    const Checkpoint* resume
+    const Checkpoint* resume,
+    const std::function<void()>& afterBondFix
 )
 {
     auto bonds = IceBondForces::define(lmp, ice);
+    if (afterBondFix)
+    {
+        afterBondFix();
+    }
     // LIGGGHTS' set-up of the first run resets property/atom values to their
     // defaults, so the bonds are stored after it.
     lmp.command("run 0");
