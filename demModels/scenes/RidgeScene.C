@@ -131,7 +131,6 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     {
         ends.fail("fixedLength", "expected 0 <= fixedLength < half the beam length");
     }
-    s.endSupport = EndSupport::New(ends);
 
     const Dictionary& t = d.subDict("test");
     t.checkKeys({"type", "platenLength", "platenHeight", "settleTime", "speed", "initialGap",
@@ -158,11 +157,9 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
         t.fail("type", s.test + " tests the bond between keel and consolidated layer: "
                "keel.settledRubble must name a keel");
     }
-    if (RidgeLoadTest::New(s.test, s)->needsLayer())
-    {
-        requireEndSupport(ends, *s.endSupport, {"clamped"},
-            s.test + " holds the whole keel fixed, so its ends are held with it");
-    }
+    s.endSupport = RidgeLoadTest::New(s.test, s)->needsLayer()
+        ? EndSupport::New(ends, {"clamped"}, s.test + " holds the whole keel fixed, so its ends are held with it")
+        : EndSupport::New(ends);
     if (s.fixedEndLength <= 0.0 && (s.endSupport->name() == "pinned" || s.endSupport->name() == "floating"))
     {
         ends.fail("fixedLength", "0 leaves no end pads for endSupport " + s.endSupport->name());

@@ -115,8 +115,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
         supports.fail("span", formatNumber(s.span) + " m is not allowed: the supports must lie under the beam, "
                       "whose beam.length is " + formatNumber(s.length) + " m");
     }
-    s.endSupport = EndSupport::New(supports);
-    requireEndSupport(supports, *s.endSupport, {"simple", "clamped", "pinned"},
+    s.endSupport = EndSupport::New(supports, {"simple", "clamped", "pinned"},
         "the beam is weightless and dry (no water to float on), so springs alone would not carry it");
 
     const Dictionary& platen = props.subDict("platen");

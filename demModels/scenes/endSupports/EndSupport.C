@@ -9,6 +9,8 @@
 #include "SelectionTable.H"
 #include "SimpleEnds.H"
 
+#include <algorithm>
+
 #include "atom.h"
 #include "fix_external.h"
 #include "lammps.h"
@@ -41,9 +43,27 @@ long EndSupportGeometry::padParticles(int end) const
 }
 
 
-std::unique_ptr<EndSupport> EndSupport::New(const Dictionary& d, const std::string& key)
+std::unique_ptr<EndSupport> EndSupport::New(const Dictionary& d)
 {
-    return endSupports.New(d, key, d);
+    return endSupports.New(d, "endSupport", d);
+}
+
+
+std::unique_ptr<EndSupport> EndSupport::New
+(
+    const Dictionary& d,
+    const std::vector<std::string>& allowed,
+    const std::string& why
+)
+{
+    const std::string name = d.getChoice("endSupport", names());
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+    {
+        std::string list;
+        for (const std::string& a : allowed) list += " " + a;
+        d.fail("endSupport", "'" + name + "' is not available here: " + why + "; allowed here:" + list);
+    }
+    return New(d);
 }
 
 
@@ -143,23 +163,5 @@ void EndSupport::callback(void* self, int64_t, int nlocal, int*, double**, doubl
     support.afterForces(*support.lmp_, *support.geometry_);
 }
 
-
-void requireEndSupport
-(
-    const Dictionary& d,
-    const EndSupport& support,
-    const std::vector<std::string>& allowed,
-    const std::string& why,
-    const std::string& key
-)
-{
-    for (const std::string& name : allowed)
-    {
-        if (name == support.name()) return;
-    }
-    std::string list;
-    for (const std::string& name : allowed) list += " " + name;
-    d.fail(key, "'" + support.name() + "' is not available here: " + why + "; allowed here:" + list);
-}
 
 } // namespace iceDEM
