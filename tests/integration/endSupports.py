@@ -10,19 +10,24 @@ usage: endSupports.py bending  BENDING_CASE WORKDIR threePointBendingDEM
 bending: a small three-point bending beam (1.2 m long, 1.0 m between the
   support axes, 0.3 x 0.1 m, 0.04 m particles, 638 particles) under simple,
   clamped and pinned ends (clamped and pinned hold the 0.1 m beyond each
-  support axis). Beam theory for a central load F on a span L: the highest
-  load is F = c sigma B D^2 / L, c = 2/3 simply supported or pinned, 4/3
-  clamped; the elastic slope against mid-span deflection is 48 EI/L^3
-  simply supported or pinned, 192 EI/L^3 clamped (Euler-Bernoulli). sigma is
-  the calibrated ice's flexural strength: ../threePointBending's breakN puts
-  it at the size-effect targets, 902-987 kPa (README, "Scatter over
-  packings"); the test uses their middle, 945 kPa. Checks: (a) simple,
-  clamped and pinned failure forces each within 10 % of beam theory; (b)
-  clamped / simple failure force 2 within 10 %; (c) elastic slopes clamped /
-  simple 4 and pinned / simple 1 within 10 %; (d) weightless, the supports'
-  reaction equals the platen force over the rise (mean over 20-80 % of the
-  highest load) within 10 % (measured 0.95-1.08: the small beam's rise lasts
-  0.05 s, and it still rings from the platen's ramp).
+  support axis), three packings each (seeds 1-3: one packing scatters by
+  5-10 %, the mean is what beam theory describes). Beam theory for a central
+  load F on a span L: the stress sigma is reached at F = c sigma B D^2 / L,
+  c = 2/3 simply supported or pinned, 4/3 clamped; the elastic slope against
+  mid-span deflection is 48 EI/L^3 simply supported or pinned, 192 EI/L^3
+  clamped (Euler-Bernoulli). sigma is the calibrated ice's flexural strength:
+  ../threePointBending's breakN puts it at the size-effect targets, 902-987
+  kPa (README, "Scatter over packings"); the test uses their middle, 945 kPa.
+  Checks, on the means over the packings: (a) simple and pinned highest loads
+  within 10 % of beam theory; (b) clamped: the load of the first crack (first
+  load drop) twice simple's within 10 %, and the highest load 1.0-1.3 times
+  beam theory: measured +16 %, because after the first cracks the clamped
+  pads hold the ends' axial movement and the cracked beam arches between
+  them (the issue's "rigid end walls add arching"); (c) elastic slopes
+  clamped / simple 4 and pinned / simple 1 within 10 %; (d) weightless, the
+  supports' reaction equals the platen force over the rise (mean over 20-80 %
+  of the highest load) within 10 % (measured 0.95-1.08 for seed 1: the rise
+  lasts 0.05 s, and the beam still rings from the platen's ramp).
 floating: the level-ice beam at 400 particles, 0.05 m/s, with its ends on
   springs of 2e8 N/m (floatingCoeffs), against simple and clamped: (a) its
   failure force and elastic slope lie between simple's and clamped's (10 %
@@ -86,31 +91,41 @@ def rise_balance(case, force_column="force"):
 
 
 def bending(case, work, app):
+    supports = ("simple", "clamped", "pinned")
+    seeds = (1, 2, 3)
     runs = {}
-    for support in ("simple", "clamped", "pinned"):
-        target = iceCases.copy_case(case, os.path.join(work, support))
-        props = os.path.join(target, "constant", "bendingProperties")
-        for entry, value in dict(SMALL_BENDING, **{"supports.endSupport": support}).items():
-            iceCases.set_entry(props, entry, value)
-        control = os.path.join(target, "system", "controlDict")
-        iceCases.set_entry(control, "writeInterval", 0.05)
-        iceCases.set_entry(control, "checkpointInterval", 1.0)
-        wall = iceCases.run_app(app, target, 1, ["-thickness", THICKNESS], "log.threePointBendingDEM")
-        s = runs[support] = iceCases.summary(target)
-        print(f"{support}: {s['particles']} particles, failure {s['failure_force_N']:.1f} N, slope "
-              f"{s['elastic_slope_deflection_N_per_m']:.4g} N/m (R2 {s['elastic_slope_deflection_fit_R2']:.3f}), "
-              f"KE/elastic at peak {s['kinetic_to_elastic_energy_at_peak']:.2g}, {wall:.0f} s")
+    for seed in seeds:
+        for support in supports:
+            target = iceCases.copy_case(case, os.path.join(work, f"{support}_seed{seed}"))
+            props = os.path.join(target, "constant", "bendingProperties")
+            for entry, value in dict(SMALL_BENDING, **{"supports.endSupport": support, "packing.seed": seed}).items():
+                iceCases.set_entry(props, entry, value)
+            control = os.path.join(target, "system", "controlDict")
+            iceCases.set_entry(control, "writeInterval", 0.05)
+            iceCases.set_entry(control, "checkpointInterval", 1.0)
+            wall = iceCases.run_app(app, target, 1, ["-thickness", THICKNESS], "log.threePointBendingDEM")
+            s = runs[support, seed] = iceCases.summary(target)
+            print(f"{support}, seed {seed}: {s['particles']} particles, highest load {s['failure_force_N']:.1f} N, "
+                  f"first load drop {s['first_peak_force_N']:.1f} N, slope {s['elastic_slope_deflection_N_per_m']:.4g} N/m "
+                  f"(R2 {s['elastic_slope_deflection_fit_R2']:.3f}), KE/elastic at peak "
+                  f"{s['kinetic_to_elastic_energy_at_peak']:.2g}, {wall:.0f} s")
+
+    def mean(support, key):
+        return sum(runs[support, seed][key] for seed in seeds) / len(seeds)
+
     B, L = SMALL_BENDING["beam.width"], SMALL_BENDING["supports.span"]
     simple_theory = 2.0 * SIGMA * B * THICKNESS ** 2 / (3.0 * L)
-    check("simple: failure force vs 2 sigma B D^2 / (3 L)", runs["simple"]["failure_force_N"], simple_theory, 0.10)
-    check("clamped: failure force vs 4 sigma B D^2 / (3 L)", runs["clamped"]["failure_force_N"], 2.0 * simple_theory, 0.10)
-    check("pinned: failure force vs 2 sigma B D^2 / (3 L)", runs["pinned"]["failure_force_N"], simple_theory, 0.10)
-    check("clamped / simple failure force vs 2", runs["clamped"]["failure_force_N"] / runs["simple"]["failure_force_N"], 2.0, 0.10)
-    slope = {k: v["elastic_slope_deflection_N_per_m"] for k, v in runs.items()}
+    check("simple: highest load vs 2 sigma B D^2 / (3 L)", mean("simple", "failure_force_N"), simple_theory, 0.10)
+    check("pinned: highest load vs 2 sigma B D^2 / (3 L)", mean("pinned", "failure_force_N"), simple_theory, 0.10)
+    check("clamped / simple load of the first crack vs 2",
+          mean("clamped", "first_peak_force_N") / mean("simple", "first_peak_force_N"), 2.0, 0.10)
+    between("clamped: highest load / (4 sigma B D^2 / (3 L)) (arching after the first cracks)",
+            mean("clamped", "failure_force_N") / (2.0 * simple_theory), 1.0, 1.3, 0.0)
+    slope = {k: mean(k, "elastic_slope_deflection_N_per_m") for k in supports}
     check("clamped / simple elastic slope vs 192/48 = 4", slope["clamped"] / slope["simple"], 4.0, 0.10)
     check("pinned / simple elastic slope vs 1", slope["pinned"] / slope["simple"], 1.0, 0.10)
-    for support in runs:
-        ratio, n = rise_balance(os.path.join(work, support))
+    for support in supports:
+        ratio, n = rise_balance(os.path.join(work, f"{support}_seed1"))
         check(f"{support}: support reaction / platen force over the rise ({n} samples)", ratio, 1.0, 0.10)
     finish()
 
