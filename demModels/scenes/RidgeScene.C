@@ -476,7 +476,7 @@ void RidgeScene::assemble()
         lmp_->command("run " + std::to_string(relaxSteps));
     }
 
-    if (settings_.stiffenTime > 0.0 && press)
+    if (settings_.stiffenTime > 0.0 && layout.keelParticles > 0)     // a layer alone has no contacts between blocks
     {
         stiffenContacts(layout.particles);
     }
