@@ -29,8 +29,9 @@ given too. A floating layer is held by nothing but its buoyancy: once its
 freeboard is under, the platen meets no more resistance than its own
 submerged weight, so floating has no flexural failure to compare.
 
-The default resolution of the ridge case takes 3-26 min a run (README), which
-this study does not use: the quick one runs in tens of seconds.
+The default resolution of the ridge case takes 3-26 min a run with a keel
+(README): the ridge runs use the quick one (tens of seconds); only the layer
+alone is run at the default resolution too (9-11 min a run), for beam theory.
 
 Writes runs/supportStudy/supportStudy.{csv,md,png}; --publish copies them into
 results/ (refuses unless every run of the study is finished).
