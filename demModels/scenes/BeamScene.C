@@ -75,7 +75,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     };
 
     const Dictionary& beam = props.subDict("beam");
-    beam.checkKeys({"length", "width", "thickness", "padLength"});
+    beam.checkKeys({"length", "width", "thickness", "padLength", "endSupport", "floatingCoeffs"});
     s.length = positive(beam, "length", 0, true);
     s.width = positive(beam, "width", 0, true);
     s.thickness = positive(beam, "thickness", 0, true);
@@ -85,6 +85,10 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
         beam.fail("padLength", "the two end pads (" + formatNumber(2 * s.padLength)
                   + " m) leave no free span in a beam " + formatNumber(s.length) + " m long");
     }
+    // Every condition applies: floating is the field beam's ice sheet around
+    // it (a horizontal spring; no water is modelled, nothing loads the beam
+    // vertically).
+    s.endSupport = EndSupport::New(beam);
 
     const Dictionary& packing = props.subDict("packing");
     packing.checkKeys({"particles", "radiusSpread", "solidFraction", "seed"});
@@ -171,6 +175,34 @@ void BeamScene::buildParticles()
         [this](const std::string& line) { context_.log(line); },
         settings_.loading.inertiaScaling
     );
+    describeEnds();
+}
+
+
+void BeamScene::describeEnds()
+{
+    // The platen pushes the beam along +y at mid-span; the pads (marked fixed
+    // by the packing) hold the ends, their inner faces the span's ends.
+    ends_.loadAxis = 1;
+    ends_.pushSign = 1;
+    ends_.supportX[0] = settings_.padLength;
+    ends_.supportX[1] = settings_.length - settings_.padLength;
+    ends_.rollerDiameter = settings_.platenDiameter;    // a steel cylinder as the platen
+    ends_.contactStiffness = body_.contact.normalStiffness;
+    ends_.contactDamping = body_.contact.normalDamping;
+    ends_.bodyLo = Vec3::Zero();
+    ends_.bodyHi = Vec3(settings_.length, settings_.width, settings_.thickness);
+    ends_.density = ice_.material.density;
+    ends_.particles = body_.particles;
+    ends_.endOfTag.assign(body_.particles.size(), -1);
+    for (std::size_t k = 0; k < body_.particles.size(); ++k)
+    {
+        const ParticleSpec& p = body_.particles[k];
+        if (p.fixed)
+        {
+            ends_.endOfTag[k] = p.position.x() < 0.5 * settings_.length ? 0 : 1;
+        }
+    }
 }
 
 
@@ -192,7 +224,7 @@ void BeamScene::writeLiggghtsInputs() const
         Vec3(-margin, -settings_.initialGap - settings_.platenDiameter - margin, -margin),
         Vec3(settings_.length + margin, settings_.width + settings_.loading.maxTravel + margin, settings_.thickness + margin),
         2,
-        [](const ParticleSpec& p) { return p.fixed ? fixedType : mobileType; }
+        [this](const ParticleSpec& p) { return p.fixed && !settings_.endSupport->padsIntegrated() ? fixedType : mobileType; }
     );
     const double radius = 0.5 * settings_.platenDiameter;
     writeCylinderStl
@@ -231,7 +263,10 @@ void BeamScene::startLiggghts(const Checkpoint* resume)
     lmp_ = context_.startLiggghts(variables, "DEM/in.levelIceBeam");
     LiggghtsInstance& lmp = *lmp_;
 
-    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
+    EndSupport& support = *settings_.endSupport;
+    support.defineForces(lmp, context_, ends_);
+    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume, [&] { support.defineMotion(lmp, ends_); });
+    context_.log("End support " + support.description());
 }
 
 
@@ -282,7 +317,7 @@ void BeamScene::run()
     loading_ = std::make_unique<PlatenLoading>
     (
         context_, settings_.loading, body_.dt,
-        static_cast<long>(body_.particles.size()), fixedType
+        static_cast<long>(body_.particles.size()), fixedType, std::vector<std::string>{"supportReaction"}
     );
     loading_->setInputs(inputs());
     std::unique_ptr<Checkpoint> resume;
@@ -298,6 +333,7 @@ void BeamScene::run()
     hooks.force = [this] { return platenForce(); };
     hooks.stopEjecta = [this] { return freezeEjecta(); };
     hooks.failure = [this] { return forces_.failure(); };
+    hooks.extras = [this] { return std::vector<double>{settings_.endSupport->reaction(context_.comm())}; };
     loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(context_.wallSeconds()); });
     loading_->logEnd(context_.wallSeconds());
 }
@@ -398,6 +434,13 @@ void BeamScene::writeSummary(double wallSeconds) const
         {"share_within_10pct_of_span_from_centre", breaks.empty() ? 0.0 : centreBreaks / breaks.size()},
         {"along_span_histogram", alongSpan}
     };
+    j["end_support"] = settings_.endSupport->summary();
+    std::size_t peakRow = 0;
+    for (std::size_t k = 0; k < forceCurve.nRows(); ++k)
+    {
+        if (forceCurve.row(k)[2] > forceCurve.row(peakRow)[2]) peakRow = k;
+    }
+    j["support_reaction_at_peak_N"] = forceCurve.nRows() > 0 ? forceCurve.row(peakRow)[6] : 0.0;
     j["platen_speed_m_per_s"] = settings_.platenSpeed;
     j["particles"] = body_.particles.size();
     j["ejected_particles_stopped"] = state.frozenEjecta;
@@ -415,11 +458,12 @@ void BeamScene::writeSummary(double wallSeconds) const
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 
     // The curve again, with displacement measured from first contact.
-    CsvWriter curve({"time", "travel", "displacement", "force", "brokenBonds", "kineticEnergy", "bondEnergy"});
+    CsvWriter curve({"time", "travel", "displacement", "force", "brokenBonds", "kineticEnergy", "bondEnergy",
+                     "supportReaction"});
     for (std::size_t k = 0; k < forceCurve.nRows(); ++k)
     {
         const std::vector<double>& row = forceCurve.row(k);
-        curve.addRow({row[0], row[1], row[1] - onset, row[2], row[3], row[4], row[5]});
+        curve.addRow({row[0], row[1], row[1] - onset, row[2], row[3], row[4], row[5], row[6]});
     }
     curve.write(context_.path("postProcessing/platenForce.csv"));
 }

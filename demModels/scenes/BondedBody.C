@@ -90,12 +90,17 @@ AttachedForces attachIceBonds
     const IceProperties& ice,
     const BondedBody& body,
     PlatenLoading& loading,
-    const Checkpoint* resume
+    const Checkpoint* resume,
+    const std::function<void()>& afterBondFix
 )
 {
     AttachedForces attached;
     attached.bonds = IceBondForces::define(lmp, ice);
     std::unique_ptr<IceBondForces>& bonds = attached.bonds;
+    if (afterBondFix)
+    {
+        afterBondFix();
+    }
     if (body.inertiaScaling != 1.0)
     {
         attached.inertia = std::make_unique<InertiaScalingFix>(lmp, body.inertiaScaling);

@@ -83,7 +83,8 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     const Dictionary& keel = d.subDict("keel");
     keel.checkKeys({"settledRubble", "trimDepth"});
     const std::string keelFile = keel.getString("settledRubble");
-    s.keelFile = keelFile.front() == '/' ? keelFile : s.caseDir + "/" + keelFile;
+    s.hasKeel = keelFile != "none";
+    s.keelFile = !s.hasKeel ? "none" : keelFile.front() == '/' ? keelFile : s.caseDir + "/" + keelFile;
     s.trimDepth = keel.getScalarOrDefault("trimDepth", s.trimDepth);
     if (s.trimDepth < 0.0) keel.fail("trimDepth", "must not be negative");
 
@@ -118,8 +119,15 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
         a.fail("dampingAlpha", "expected a hysteretic alpha in [0, 1]");
     }
 
+    if (!s.hasKeel && s.layer.thickness <= 0.0)
+    {
+        keel.fail("settledRubble", "none (no keel) needs a consolidated layer: consolidatedLayer.thickness is 0");
+    }
+
+    // The ends' pads are made with the ridge (fixedLength); how they are held
+    // (endSupport) is the loading stage's.
     const Dictionary& ends = d.subDict("ends");
-    ends.checkKeys({"fixedLength"});
+    ends.checkKeys({"fixedLength", "endSupport", "floatingCoeffs"});
     s.fixedEndLength = ends.getScalar("fixedLength");
     if (s.fixedEndLength < 0.0 || 2.0 * s.fixedEndLength >= s.layer.length)
     {
@@ -159,6 +167,18 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     {
         t.fail("type", s.test + " tests the bond between keel and consolidated layer: "
                "consolidatedLayer.thickness must be positive");
+    }
+    if (RidgeLoadTest::New(s.test, s)->needsLayer() && !s.hasKeel)
+    {
+        t.fail("type", s.test + " tests the bond between keel and consolidated layer: "
+               "keel.settledRubble must name a keel");
+    }
+    s.endSupport = RidgeLoadTest::New(s.test, s)->needsLayer()
+        ? EndSupport::New(ends, {"clamped"}, s.test + " holds the whole keel fixed, so its ends are held with it")
+        : EndSupport::New(ends);
+    if (s.fixedEndLength <= 0.0 && (s.endSupport->name() == "pinned" || s.endSupport->name() == "floating"))
+    {
+        ends.fail("fixedLength", "0 leaves no end pads for endSupport " + s.endSupport->name());
     }
 
     s.controlFile = controlFile;
@@ -392,24 +412,33 @@ void RidgeScene::requireInsideBox(const SavedRubble& keel) const
 void RidgeScene::assemble()
 {
     const auto wallStart = std::chrono::steady_clock::now();
-    if (!std::filesystem::exists(settings_.keelFile))
+    if (settings_.hasKeel && !std::filesystem::exists(settings_.keelFile))
     {
         throw InputError(context_.path("constant/ridgeProperties"), "keel.settledRubble",
             "'" + settings_.keelFile + "' does not exist: build the keel first (its rubble case's "
-            "./Allrun, or rubbleDEM -stage settle)");
+            "./Allrun, or rubbleDEM -stage settle and -stage compact)");
     }
     // Read once at the start: an edit during the assembly is not what made the ridge.
     const Provenance inputs = assemblyInputs();
-    const SavedRubble keel = SavedRubble::read(settings_.keelFile);
-    const bool compacted = keel.kind == SavedRubble::compactedRubble;
-    if (keel.kind != SavedRubble::settledRubble && !compacted)
+    // Without a keel (settledRubble none) the layer alone, placed 0.5 m above
+    // the box's floor (where a 0.5 m keel's bottom floats), floats in the water.
+    SavedRubble keel;
+    bool compacted = false;
+    if (settings_.hasKeel)
     {
-        throw InputError(settings_.keelFile, "kind", "holds " + (keel.kind.empty() ? std::string("no kind")
-            : "a " + keel.kind) + ", where a keel must be a settled or a compacted rubble (rubbleDEM -stage settle "
-            "or -stage compact)");
+        keel = SavedRubble::read(settings_.keelFile);
+        compacted = keel.kind == SavedRubble::compactedRubble;
+        if (keel.kind != SavedRubble::settledRubble && !compacted)
+        {
+            throw InputError(settings_.keelFile, "kind", "holds " + (keel.kind.empty() ? std::string("no kind")
+                : "a " + keel.kind) + ", where a keel must be a settled or a compacted rubble (rubbleDEM -stage settle "
+                "or -stage compact)");
+        }
+        requireInsideBox(keel);
     }
-    requireInsideBox(keel);
-    const RidgeLayout layout = assembleRidge(keel.particles, settings_.layer, settings_.trimDepth);
+    const RidgeLayout layout = settings_.hasKeel
+        ? assembleRidge(keel.particles, settings_.layer, settings_.trimDepth)
+        : assembleLayerAlone(settings_.layer, 0.5);
     layerFirstTag_ = layout.keelParticles + 1;
     const int layerCount = static_cast<int>(layout.particles.size()) - layout.keelParticles;
 
@@ -440,7 +469,12 @@ void RidgeScene::assemble()
     // settled), the layer rigid (fixed type, moved by LIGGGHTS).
     const IceProperties soft = ice_.softenedForAssembly(settings_.assemblyYoungsModulus, settings_.assemblyDampingAlpha);
     std::vector<int> types(layout.particles.size(), mobileType);
-    for (std::size_t k = layout.keelParticles; k < types.size(); ++k) types[k] = fixedType;
+    // (A layer alone is left mobile: LIGGGHTS needs a particle of type 1,
+    // and it is not pressed.)
+    for (std::size_t k = layout.keelParticles; k < types.size(); ++k)
+    {
+        types[k] = layout.keelParticles > 0 ? fixedType : mobileType;
+    }
     chooseContactsAndStep(layout.particles, soft);
     startLiggghts(layout.particles, types, soft, "read_data " + context_.path("DEM/ridge.data"), dt_);
 
@@ -472,9 +506,11 @@ void RidgeScene::assemble()
     bonds_->createBonds(layout.particles, blockBonds);
     lmp_->command("run 0");
 
-    const long pressSteps = layerCount > 0
+    // A layer alone has nothing to be pressed into or to settle under it.
+    const bool press = layerCount > 0 && layout.keelParticles > 0;
+    const long pressSteps = press
         ? std::lround(settings_.pressDepth / (settings_.pressSpeed * dt_)) : 0;
-    const long relaxSteps = layerCount > 0 ? std::lround(settings_.relaxTime / dt_) : 0;
+    const long relaxSteps = press ? std::lround(settings_.relaxTime / dt_) : 0;
     if (pressSteps > 0)
     {
         context_.log("Pressing the layer " + formatNumber(settings_.pressDepth * 1e3) + " mm into the keel at "
@@ -491,7 +527,7 @@ void RidgeScene::assemble()
         lmp_->command("run " + std::to_string(relaxSteps));
     }
 
-    if (settings_.stiffenTime > 0.0)
+    if (settings_.stiffenTime > 0.0 && layout.keelParticles > 0)     // a layer alone has no contacts between blocks
     {
         stiffenContacts(layout.particles);
     }
@@ -685,6 +721,7 @@ std::vector<double> RidgeScene::waterColumns()
         const std::vector<double> own = externalWater_->values();
         columns.insert(columns.end(), own.begin(), own.end());
     }
+    columns.push_back(settings_.endSupport->reaction(context_.comm()));
     return columns;
 }
 
@@ -706,7 +743,11 @@ Provenance RidgeScene::assemblyInputs(const Provenance& made) const
     Provenance p;
     p.add("stage", "ridgeDEM assemble");
     const std::string keel = "keel (settledRubble)";
-    if (std::filesystem::exists(settings_.keelFile) || made.empty())
+    if (!settings_.hasKeel)
+    {
+        p.add(keel, "none");
+    }
+    else if (std::filesystem::exists(settings_.keelFile) || made.empty())
     {
         p.addFileContent(keel, settings_.keelFile);
     }
@@ -717,7 +758,11 @@ Provenance RidgeScene::assemblyInputs(const Provenance& made) const
     }
     p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
     p.addDictionaryFile("constant/freezeBondProperties", context_.path("constant/freezeBondProperties"));
-    p.addDictionaryFile("constant/ridgeProperties", context_.path("constant/ridgeProperties"), {"test"});
+    // Not the test's entries, nor how the ends are held in it (the pads'
+    // length, fixedLength, is the assembly's: it types their particles).
+    const Dictionary ridgeProperties = Dictionary::readFile(context_.path("constant/ridgeProperties"));
+    p.addDictionary("constant/ridgeProperties", ridgeProperties, {"test", "ends"});
+    p.addDictionary("constant/ridgeProperties", ridgeProperties.subDict("ends"), {"endSupport", "floatingCoeffs"});
     const Dictionary coupling = Dictionary::readFile(context_.path("constant/couplingProperties"));
     if (coupling.isDict("hydrostatic"))
     {
@@ -741,6 +786,7 @@ Provenance RidgeScene::loadingInputs(const Provenance& ridge) const
     const Dictionary ridgeProperties = Dictionary::readFile(context_.path("constant/ridgeProperties"));
     p.addDictionary("constant/ridgeProperties", ridgeProperties.subDict("test"),
                     {"referenceFlexuralStrength"});
+    p.addDictionary("constant/ridgeProperties", ridgeProperties.subDict("ends"));
     p.addDictionaryFile("constant/couplingProperties", context_.path("constant/couplingProperties"));
     p.addDictionaryFile(settings_.controlFile, context_.path(settings_.controlFile),
                         {"writeInterval", "checkpointInterval"});
@@ -781,6 +827,11 @@ void RidgeScene::load()
         particles[k].radius = s.radius;
         particles[k].block = s.block;
         types[k] = test_->particleType(s.type, static_cast<long>(k) >= geometry.keelParticles);
+        // The end pads were saved fixed; simple and floating supports free them.
+        if (s.type == fixedType && types[k] == fixedType && settings_.endSupport->padsIntegrated())
+        {
+            types[k] = mobileType;
+        }
         if (std::abs(s.position.x() - xLoad) < 0.5 * settings_.platenLength + s.radius)
         {
             topUnderPlaten = std::max(topUnderPlaten, s.position.z() + s.radius);
@@ -795,6 +846,32 @@ void RidgeScene::load()
     {
         chooseContactsAndStep(particles, ice_, inertiaScaling);
     }
+
+    // The end support's view of the ridge: the platen pushes down (-z), the
+    // pads are the particles saved fixed at each end, their inner faces at
+    // fixedLength from the ends.
+    ends_.loadAxis = 2;
+    ends_.pushSign = -1;
+    ends_.supportX[0] = settings_.fixedEndLength;
+    ends_.supportX[1] = settings_.layer.length - settings_.fixedEndLength;
+    ends_.rollerDiameter = 0.1;     // as the three-point bending test's supports (assumed)
+    ends_.contactStiffness = contact_.normalStiffness;
+    ends_.contactDamping = contact_.normalDamping;
+    ends_.bodyLo = Vec3(0.0, 0.0, geometry.keelBottom);
+    ends_.bodyHi = Vec3(settings_.layer.length, settings_.layer.width, geometry.clTop);
+    ends_.density = ice_.material.density;
+    ends_.particles = particles;
+    ends_.endOfTag.assign(particles.size(), -1);
+    if (!test_->needsLayer())   // the keel-bond tests hold the whole keel
+    {
+        for (std::size_t k = 0; k < particles.size(); ++k)
+        {
+            if (ridge.particles[k].type == fixedType)
+            {
+                ends_.endOfTag[k] = particles[k].position.x() < 0.5 * settings_.layer.length ? 0 : 1;
+            }
+        }
+    }
     std::vector<std::string> waterColumnNames{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"};
     if (externalWater_)
     {
@@ -805,6 +882,7 @@ void RidgeScene::load()
         }
         waterColumnNames.insert(waterColumnNames.end(), externalWater_->columns.begin(), externalWater_->columns.end());
     }
+    waterColumnNames.push_back("supportReaction");  // the end support's, along z, averaged since the last sample
     loading_ = std::make_unique<PlatenLoading>
     (
         context_, settings_.loading, dt_,
@@ -845,7 +923,11 @@ void RidgeScene::load()
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(waterParameters));
         waterForces_->defineForceFix();
     }
+    EndSupport& support = *settings_.endSupport;
+    support.defineForces(*lmp_, context_, ends_);
     bonds_ = IceBondForces::define(*lmp_, ice_);
+    support.defineMotion(*lmp_, ends_);
+    context_.log("End support " + support.description());
     if (test_->integratesParticles() && waterForces_)
     {
         // Not in the keel-bond tests: nothing is integrated there, and the fix
@@ -985,6 +1067,15 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["depth_m"] = g.depth();
     j["water_level_m"] = g.waterLevel;
     j["freeze_bond_set"] = freezeBondProperties_.summary();
+    j["end_support"] = settings_.endSupport->summary();
+    const std::size_t reactionColumn =
+        std::find(columns.begin(), columns.end(), "supportReaction") - columns.begin();
+    double reactionAtPeak = 0.0;
+    for (std::size_t k = 0; k < rows; ++k)
+    {
+        if (curve.row(k)[PlatenLoading::travelColumn] == travelAtPeak) reactionAtPeak = curve.row(k)[reactionColumn];
+    }
+    j["support_reaction_at_peak_N"] = reactionAtPeak;
     j["peak_force_N"] = peak;
     j["travel_at_peak_m"] = travelAtPeak;
     j["force_at_start_N"] = startForce;

@@ -107,7 +107,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     }
 
     const Dictionary& supports = props.subDict("supports");
-    supports.checkKeys({"span", "diameter"});
+    supports.checkKeys({"span", "diameter", "endSupport"});
     s.span = positiveEntry(supports, "span");
     s.supportDiameter = positiveEntry(supports, "diameter");
     if (s.span > s.length)
@@ -115,6 +115,8 @@ ThreePointBendingSettings ThreePointBendingSettings::read
         supports.fail("span", formatNumber(s.span) + " m is not allowed: the supports must lie under the beam, "
                       "whose beam.length is " + formatNumber(s.length) + " m");
     }
+    s.endSupport = EndSupport::New(supports, {"simple", "clamped", "pinned"},
+        "the beam is weightless and dry (no water to float on), so springs alone would not carry it");
 
     const Dictionary& platen = props.subDict("platen");
     platen.checkKeys({"diameter", "speed", "rampTime", "initialGap"});
@@ -149,6 +151,13 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     s.radiusSpread = choice.radiusSpread;
     s.solidFraction = choice.solidFraction;
     s.seed = choice.seed;
+    if (s.endSupport->name() != "simple" && 0.5 * (s.length - s.span) < s.particleDiameter)
+    {
+        supports.fail("endSupport", s.endSupport->name() + " holds the ends by the particles beyond the support "
+            "axes, and the beam reaches " + formatNumber(0.5 * (s.length - s.span)) + " m past each: at least "
+            "one particle diameter (" + formatNumber(s.particleDiameter) + " m) is needed; shorten supports.span "
+            "or lengthen beam.length");
+    }
 
     const Dictionary& target = props.subDict("targetStrength");
     target.checkKeys({"coefficient", "exponent"});
@@ -255,6 +264,27 @@ void ThreePointBendingScene::buildParticles()
     }
     midspanHeight0_ = zMid / nMid;
     supportsHeight0_ = zSupports / nSupports;
+
+    // The end support: the platen pushes down (-z); clamped and pinned hold
+    // the particles beyond the support axes (pads), simple rests the beam on
+    // rollers of supports.diameter at the axes.
+    ends_.loadAxis = 2;
+    ends_.pushSign = -1;
+    ends_.supportX[0] = settings_.supportX(0);
+    ends_.supportX[1] = settings_.supportX(1);
+    ends_.rollerDiameter = settings_.supportDiameter;
+    ends_.contactStiffness = body_.contact.normalStiffness;
+    ends_.contactDamping = body_.contact.normalDamping;
+    ends_.bodyLo = spec.lo;
+    ends_.bodyHi = spec.hi;
+    ends_.density = ice_.material.density;
+    ends_.particles = body_.particles;
+    ends_.endOfTag.assign(body_.particles.size(), -1);
+    for (std::size_t k = 0; k < body_.particles.size(); ++k)
+    {
+        const double x = body_.particles[k].position.x();
+        ends_.endOfTag[k] = x < ends_.supportX[0] ? 0 : x > ends_.supportX[1] ? 1 : -1;
+    }
 }
 
 
@@ -277,7 +307,11 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
         Vec3(-margin, -margin, -s.supportDiameter - s.loading.maxTravel - margin),
         Vec3(s.length + margin, s.width + margin, s.thickness + s.initialGap + s.platenDiameter + margin),
         2,
-        [](const ParticleSpec& p) { return p.fixed ? fixedType : mobileType; }
+        [this](const ParticleSpec& p)
+        {
+            const bool pad = ends_.endOfTag[&p - body_.particles.data()] >= 0;
+            return pad && !settings_.endSupport->padsIntegrated() ? fixedType : mobileType;
+        }
     );
     const double overhang = 0.02;   // the cylinders reach past the beam's sides
     const Vec3 across(0.0, 1.0, 0.0);
@@ -288,17 +322,6 @@ void ThreePointBendingScene::writeLiggghtsInputs() const
         Vec3(0.5 * s.length, -overhang, touchingAxisHeight(body_.particles, 0.5 * s.length, platenRadius, 1) + s.initialGap),
         across, platenRadius, s.width + 2.0 * overhang, 48, "platen"
     );
-    const double supportRadius = 0.5 * s.supportDiameter;
-    for (int side = 0; side < 2; ++side)
-    {
-        const double x = s.supportX(side);
-        writeCylinderStl
-        (
-            context_.path(side == 0 ? "DEM/supportA.stl" : "DEM/supportB.stl"),
-            Vec3(x, -overhang, touchingAxisHeight(body_.particles, x, supportRadius, -1)),
-            across, supportRadius, s.width + 2.0 * overhang, 48, side == 0 ? "supportA" : "supportB"
-        );
-    }
 }
 
 
@@ -313,8 +336,6 @@ void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
     {
         {"readParticles", "\"" + readParticles + "\""},
         {"platenStl", context_.path("DEM/platen.stl")},
-        {"supportAStl", context_.path("DEM/supportA.stl")},
-        {"supportBStl", context_.path("DEM/supportB.stl")},
         {"ghostCutoff", exactNumber(bondGhostCutoff(ice_, body_.maxRadius(), skin))},
         {"neighbourSkin", exactNumber(skin)},
         {"dt", exactNumber(body_.dt)},
@@ -326,7 +347,10 @@ void ThreePointBendingScene::startLiggghts(const Checkpoint* resume)
     variables.insert(variables.end(), contactVars.begin(), contactVars.end());
     lmp_ = context_.startLiggghts(variables, "DEM/in.threePointBending");
     LiggghtsInstance& lmp = *lmp_;
-    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume);
+    EndSupport& support = *settings_.endSupport;
+    support.defineForces(lmp, context_, ends_);
+    forces_ = attachIceBonds(lmp, ice_, body_, *loading_, resume, [&] { support.defineMotion(lmp, ends_); });
+    context_.log("End support " + support.description());
 }
 
 
@@ -349,8 +373,8 @@ double ThreePointBendingScene::platenForce() const
 
 double ThreePointBendingScene::supportReaction() const
 {
-    LAMMPS_NS::Fix& average = lmp_->fix("forceAverage");
-    return -(average.compute_vector(1) + average.compute_vector(2));
+    // Averaged over the steps since the last sample, as the platen force.
+    return settings_.endSupport->reaction(context_.comm());
 }
 
 
@@ -501,13 +525,18 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     j["length_m"] = s.length;
     j["width_m"] = s.width;
     j["span_m"] = s.span;
+    j["end_support"] = s.endSupport->summary();
     j["particle_diameter_m"] = s.particleDiameter;
     j["failure_force_N"] = peak;
     j["travel_at_failure_m"] = displacement[peakIndex];
     j["peak_force_N"] = peak;
     j["first_peak_force_N"] = first.force;
     j["travel_at_first_peak_m"] = first.travel;
-    j["flexural_strength_Pa"] = strength;
+    j["flexural_strength_Pa"] = strength;   // 3FL/(2BD^2): the simply supported beam's formula
+    // Beam theory for these supports: a clamped span carries twice the
+    // simply supported (or pinned) one's load at the same stress.
+    const double supportFactor = s.endSupport->name() == "clamped" ? 2.0 : 1.0;
+    j["flexural_strength_for_supports_Pa"] = strength / supportFactor;
     j["target_strength_Pa"] = target;
     j["strength_error"] = strength / target - 1.0;
     j["elastic_slope_platen_N_per_m"] = platenFit.elasticSlope;

@@ -34,8 +34,11 @@ import iceCases  # noqa: E402
 
 THICKNESS = (0.10, 0.15)
 PARTICLE_DIAMETER = (0.04, 0.06)
-# The ramp is about the fundamental period of these shorter beams.
-SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "platen.speed": 0.1, "platen.rampTime": 0.03}
+# The ramp is about the fundamental period of these shorter beams. 0.05 m/s:
+# on the frictionless rollers of endSupport simple (nothing holds the
+# weightless beam horizontally) the 248-particle beam bounced at 0.1 m/s and
+# its rise was not linear (R^2 0.92; the supports had the ice's friction before).
+SMALL = {"beam.length": 1.05, "beam.width": 0.3, "supports.span": 1.0, "platen.speed": 0.05, "platen.rampTime": 0.03}
 
 
 def small_case(case, work, particle_diameter):

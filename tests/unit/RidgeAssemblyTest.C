@@ -108,6 +108,42 @@ TEST(RidgeAssembly, MeasuresLayersAndDepth)
 }
 
 
+TEST(RidgeAssembly, ALayerAloneIsPackedAsOnAKeel)
+{
+    // The CL packed as assembleRidge packs it on a keel (the same count; the
+    // packing of a shifted box is another draw), from the given bottom: one
+    // block, no keel; measureRidge puts the keel's bottom and top at the
+    // layer's bottom, so that the depth is the layer's.
+    const RidgeLayout onKeel = assembleRidge(latticeKeel(), layer(0.1), 0.08);
+    const RidgeLayout alone = assembleLayerAlone(layer(0.1), 0.5);
+    EXPECT_EQ(alone.keelParticles, 0);
+    EXPECT_EQ(alone.clBlock, 0);
+    EXPECT_NEAR(alone.clBottom, 0.5, 1e-12);
+    EXPECT_NEAR(alone.clTop, 0.6, 1e-12);
+    ASSERT_EQ(alone.particles.size(), onKeel.particles.size() - onKeel.keelParticles);
+    std::vector<SavedParticle> saved;
+    for (std::size_t k = 0; k < alone.particles.size(); ++k)
+    {
+        const ParticleSpec& p = alone.particles[k];
+        EXPECT_GE(p.position.z() - p.radius, 0.5 - 1e-12);
+        EXPECT_LE(p.position.z() + p.radius, 0.6 + 1e-12);
+        EXPECT_EQ(p.block, 0);
+        SavedParticle s;
+        s.position = p.position;
+        s.radius = p.radius;
+        s.block = p.block;
+        saved.push_back(s);
+    }
+    const RidgeGeometry g = measureRidge(saved, 0, 0.6, 0.4);
+    EXPECT_EQ(g.keelParticles, 0);
+    EXPECT_EQ(g.layerParticles, static_cast<int>(saved.size()));
+    EXPECT_NEAR(g.keelBottom, g.clBottom, 1e-12);
+    EXPECT_NEAR(g.keelTop, g.clBottom, 1e-12);
+    EXPECT_NEAR(g.depth(), g.clTop - g.clBottom, 1e-12);
+    EXPECT_THROW(assembleLayerAlone(layer(0.0), 0.5), std::invalid_argument);
+}
+
+
 TEST(RidgeAssembly, FloatingLevelBalancesWeightAndBuoyancy)
 {
     std::vector<ParticleSpec> spheres;

@@ -126,6 +126,8 @@ def result_row(run, resolution):
         # sigma_f1 is the case's test.referenceFlexuralStrength; null for a force that never rose
         "equivalent_thickness_m": round(s["equivalent_thickness_m"] or 0.0, 4),
         "failure_mode": failure["mode"],
+        # sigma_f and D_eq are simple-beam formulas: which supports made the force
+        "end_support": s.get("end_support", {}).get("type", "clamped"),
         "freeze_broken_in_tension_share": round(s["freeze_bonds_broken_in_tension_share"], 3),
         "broken_ice": s["broken_by_family"]["ice"], "broken_freeze": s["broken_by_family"]["freeze"],
         "layer_keel_broken": s["layer_keel_bonds_broken"],
@@ -148,7 +150,11 @@ def write_table(rows, resolution, folder):
                                    for r in rows]
     iceCases.write_atomically(base + ".csv", "\n".join(lines) + "\n")
     short = [c for c in columns if c != "evidence"]
-    md = ["| " + " | ".join(short) + " |", "|" + "---|" * len(short)]
+    supports = sorted({str(r.get("end_support", "clamped")) for r in rows})
+    md = ["End supports: %s (ends.endSupport; README, \"End supports\"). flexural_strength_kPa = 3FL/(2BD^2) "
+          "and equivalent_thickness_m = sqrt(3FL/(2 sigma_f1 B)) are the simply supported beam's formulas "
+          "(scenes.md section 7), whatever held the ends." % ", ".join(supports), ""]
+    md += ["| " + " | ".join(short) + " |", "|" + "---|" * len(short)]
     md += ["| " + " | ".join(str(r[c]) for c in short) + " |" for r in rows]
     md += ["", "Evidence of the failure mode (postProcessing/failureAnalysis.py, per run):", ""]
     md += ["- run %d: %s" % (r["run"], r["evidence"]) for r in rows]

@@ -12,6 +12,12 @@
 namespace iceDEM
 {
 
+namespace
+{
+//- The CL's packing on top of layout.clBottom, as one more block (clBlock).
+void addLayer(RidgeLayout& layout, const ConsolidatedLayerSpec& cl);
+}
+
 RidgeLayout assembleRidge
 (
     const std::vector<SavedParticle>& keel,
@@ -68,7 +74,31 @@ RidgeLayout assembleRidge
 
     layout.clBlock = maxBlock + 1;
     layout.clBottom = highestKept;
-    layout.clTop = highestKept + cl.thickness;
+    addLayer(layout, cl);
+    return layout;
+}
+
+
+RidgeLayout assembleLayerAlone(const ConsolidatedLayerSpec& cl, double bottom)
+{
+    if (!(cl.thickness > 0.0))
+    {
+        throw std::invalid_argument("assembleLayerAlone: the CL must have a positive thickness");
+    }
+    RidgeLayout layout;
+    layout.keelTop = layout.keelBottom = bottom;
+    layout.clBlock = 0;
+    layout.clBottom = bottom;
+    addLayer(layout, cl);
+    return layout;
+}
+
+
+namespace
+{
+void addLayer(RidgeLayout& layout, const ConsolidatedLayerSpec& cl)
+{
+    layout.clTop = layout.clBottom + cl.thickness;
     RandomPackingSpec spec;
     spec.lo = Vec3(0.0, 0.0, layout.clBottom);
     spec.hi = Vec3(cl.length, cl.width, layout.clTop);
@@ -84,8 +114,8 @@ RidgeLayout assembleRidge
         layout.particles.push_back(p);
         layout.keelTagOfParticle.push_back(-1);
     }
-    return layout;
 }
+} // namespace
 
 
 RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int layerBlock, double length, double width)
@@ -99,9 +129,9 @@ RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int laye
         (inLayer ? layerHighs : keelHighs).push_back(p.position.z() + p.radius);
         meanRadius += p.radius / particles.size();
     }
-    if (keelLows.empty())
+    if (keelLows.empty() && layerLows.empty())
     {
-        throw std::invalid_argument("measureRidge: no keel particles");
+        throw std::invalid_argument("measureRidge: no particles");
     }
     RidgeGeometry g;
     g.length = length;
@@ -109,6 +139,13 @@ RidgeGeometry measureRidge(const std::vector<SavedParticle>& particles, int laye
     g.keelParticles = static_cast<int>(keelLows.size());
     g.particleRadius = meanRadius;
     g.layerParticles = static_cast<int>(layerLows.size());
+    if (keelLows.empty())   // a layer alone
+    {
+        g.clBottom = percentile(layerLows, 0.01);
+        g.clTop = percentile(layerHighs, 0.99);
+        g.keelBottom = g.keelTop = g.clBottom;
+        return g;
+    }
     g.keelBottom = percentile(keelLows, 0.01);
     g.keelTop = percentile(keelHighs, 0.99);
     g.clBottom = g.hasLayer() ? percentile(layerLows, 0.01) : g.keelTop;
