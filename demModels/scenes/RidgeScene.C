@@ -167,6 +167,7 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
     freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    freezeBondProperties_.checkIce(ice_, context_.path("constant/iceProperties"));
     if (!dynamic_cast<const GivenAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
@@ -511,7 +512,10 @@ void RidgeScene::assemble()
     MPI_Barrier(context_.comm());
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
-        << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
+        << " freeze-bonds (" << layerToKeel << " between layer and keel); confinement "
+        << freezeStats.meanConfinement * 1e-3 << " kPa mean, " << freezeStats.maxConfinement * 1e-3
+        << " kPa max on the real area; effective tensile " << freezeStats.meanEffectiveTensile * 1e-3
+        << " kPa, shear " << freezeStats.meanEffectiveShear * 1e-3 << " kPa; particle-level tensile "
         << freezeStats.meanTensile * 1e-3 << " kPa, shear " << freezeStats.meanShear * 1e-3
         << " kPa on the bond area (" << freezeBondProperties_.summary() << "); " << fixedEnds
         << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
@@ -707,6 +711,18 @@ void RidgeScene::load()
         writeGeometry(geometry, ridge.particles);
     }
     layerFirstTag_ = geometry.keelParticles + 1;
+    // The freeze-bonds' strengths as assembled, for the summary.
+    freezeBondCount_ = 0;
+    double sumTensile = 0.0, sumShear = 0.0;
+    for (const BondState& b : ridge.bonds)
+    {
+        if (b.family != BondFamily::freeze) continue;
+        ++freezeBondCount_;
+        sumTensile += b.tensileStrength;
+        sumShear += b.shearStrength;
+    }
+    freezeParticleStrength_ = freezeBondCount_ > 0
+        ? BondStrengthPair{sumTensile/freezeBondCount_, sumShear/freezeBondCount_} : BondStrengthPair{};
 
     std::vector<ParticleSpec> particles(ridge.particles.size());
     std::vector<int> types(ridge.particles.size());
@@ -893,6 +909,15 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["depth_m"] = g.depth();
     j["water_level_m"] = g.waterLevel;
     j["freeze_bond_set"] = freezeBondProperties_.summary();
+    // Means over the ridge's freeze-bonds: the particle-level strengths they break
+    // at (DEM/ridge.h5) and the effective ones these stand for (c_f times the real).
+    const BondStrengthPair effective = freezeBondProperties_.particleStrength().effective(freezeParticleStrength_);
+    j["freeze_bonds"] = freezeBondCount_;
+    j["freeze_bond_particle_strengths"] = freezeBondProperties_.particleStrength().name();
+    j["freeze_bond_effective_tensile_mean_Pa"] = effective.tensile;
+    j["freeze_bond_effective_shear_mean_Pa"] = effective.shear;
+    j["freeze_bond_particle_tensile_mean_Pa"] = freezeParticleStrength_.tensile;
+    j["freeze_bond_particle_shear_mean_Pa"] = freezeParticleStrength_.shear;
     j["peak_force_N"] = peak;
     j["travel_at_peak_m"] = travelAtPeak;
     j["force_at_start_N"] = startForce;
