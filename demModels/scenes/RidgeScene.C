@@ -6,6 +6,7 @@
 #include "BondBuilder.H"
 #include "BondedBody.H"
 #include "Dictionary.H"
+#include "FixedSetStrength.H"
 #include "FreezeBonding.H"
 #include "GivenAreaCorrection.H"
 #include "IceBondForces.H"
@@ -909,15 +910,27 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["depth_m"] = g.depth();
     j["water_level_m"] = g.waterLevel;
     j["freeze_bond_set"] = freezeBondProperties_.summary();
-    // Means over the ridge's freeze-bonds: the particle-level strengths they break
-    // at (DEM/ridge.h5) and the effective ones these stand for (c_f times the real).
-    const BondStrengthPair effective = freezeBondProperties_.particleStrength().effective(freezeParticleStrength_);
+    // The freeze-bonds of DEM/ridge.h5: the particle-level strengths they break at
+    // (means), the effective ones the set asks for (c_f times the real strengths,
+    // on the bond area; a fixed set's are the same for every bond) and, when
+    // calibrated, what the virtual tests give with the particle strengths.
+    const FreezeBondParticleStrength& particleStrength = freezeBondProperties_.particleStrength();
     j["freeze_bonds"] = freezeBondCount_;
-    j["freeze_bond_particle_strengths"] = freezeBondProperties_.particleStrength().name();
-    j["freeze_bond_effective_tensile_mean_Pa"] = effective.tensile;
-    j["freeze_bond_effective_shear_mean_Pa"] = effective.shear;
+    j["freeze_bond_particle_strengths"] = particleStrength.name();
+    if (dynamic_cast<const FixedSetStrength*>(&freezeBondProperties_.strengthModel()))
+    {
+        const FreezeBondStrength set = freezeBondProperties_.strength(0.0, 1.0);
+        j["freeze_bond_effective_tensile_Pa"] = set.effectiveTensile;
+        j["freeze_bond_effective_shear_Pa"] = set.effectiveShear;
+    }
     j["freeze_bond_particle_tensile_mean_Pa"] = freezeParticleStrength_.tensile;
     j["freeze_bond_particle_shear_mean_Pa"] = freezeParticleStrength_.shear;
+    if (particleStrength.name() != "direct")
+    {
+        const BondStrengthPair virtualTests = particleStrength.effective(freezeParticleStrength_);
+        j["freeze_bond_virtual_test_tensile_Pa"] = virtualTests.tensile;
+        j["freeze_bond_virtual_test_shear_Pa"] = virtualTests.shear;
+    }
     j["peak_force_N"] = peak;
     j["travel_at_peak_m"] = travelAtPeak;
     j["force_at_start_N"] = startForce;

@@ -673,6 +673,14 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["freeze_bond_tensile_sd_Pa"] = freezeStats_.sdTensile;
     j["freeze_bond_shear_mean_Pa"] = freezeStats_.meanShear;
     j["freeze_bond_shear_sd_Pa"] = freezeStats_.sdShear;
+    if (freezeBondProperties_.particleStrength().name() != "direct")
+    {
+        // What the virtual tests give with the mean particle strengths.
+        const BondStrengthPair virtualTests =
+            freezeBondProperties_.particleStrength().effective({freezeStats_.meanTensile, freezeStats_.meanShear});
+        j["freeze_bond_virtual_test_tensile_Pa"] = virtualTests.tensile;
+        j["freeze_bond_virtual_test_shear_Pa"] = virtualTests.shear;
+    }
     j["confinement_mean_Pa"] = freezeStats_.meanConfinement;
     j["confinement_max_Pa"] = freezeStats_.maxConfinement;
     j["area_correction"] = freezeBondProperties_.areaCorrection().value();
