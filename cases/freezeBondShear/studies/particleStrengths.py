@@ -32,9 +32,10 @@ Steps (every run a copy of its case under --out, two at a time):
      ice ratio), and verification runs at the derived particle strengths.
 
 Writes into --out: particleStrengths.csv (every run), particleStrengths.md
-(tables), particleStrengths.png, freezeBondCalibration (the calibratedCoeffs
-dictionary of cases/common). --publish copies the first three into this
-folder and the dictionary into cases/common.
+(tables), particleStrengths.png, particleStrengths.json (relation, derived
+strengths), freezeBondCalibration (the calibratedCoeffs dictionary of
+cases/common). --publish copies the first four into this folder and the
+dictionary into cases/common.
 
 usage: particleStrengths.py [--jobs 2] [--out DIR] [--rubble SUMMARY.json ...]
                             [--bonds freezeBonds.csv] [--publish]"""
@@ -101,9 +102,19 @@ def rubble_confinement(summaries, bonds_csv):
     return rows, dist
 
 
+def cached(done, tensile, shear, pressure):
+    """Whether a finished run's summary is there and was made with these strengths and pressure."""
+    if not os.path.exists(done):
+        return False
+    s = json.load(open(done))
+    made = (s.get("particle_tensile_strength_Pa", s.get("bond_tensile_strength_mean_Pa")),
+            s.get("particle_shear_strength_Pa", s.get("bond_shear_strength_mean_Pa")), s["confinement_pressure_Pa"])
+    return all(abs(m / w - 1) < 1e-5 for m, w in zip(made, (tensile, shear, pressure)))
+
+
 class Runner:
     """Runs the virtual tests, each in its own copy of its case under `out`; resumable
-    (a run whose summary exists is not repeated)."""
+    (a run whose summary exists, made with the same strengths and pressure, is not repeated)."""
 
     def __init__(self, out, modulus=None):
         self.out = out
@@ -126,7 +137,7 @@ class Runner:
         load rate so that the plane fails after about time_to_failure of DEM time)."""
         work = os.path.join(self.out, "shear", label)
         done = os.path.join(work, "postProcessing", "runs", label, "summary.json")
-        if not os.path.exists(done):
+        if not cached(done, tensile, shear, pressure):
             self._copy(SHEAR_CASE, work)
             props = os.path.join(work, "constant", "shearTestProperties")
             load = expected / 0.434 * 0.75 * 6.36e-3 * 1.6 + 1.0      # N, P at failure, roughly
@@ -152,7 +163,7 @@ class Runner:
         pull speed so that the peak comes after about time_to_peak of DEM time)."""
         work = os.path.join(self.out, "tension", label)
         done = os.path.join(work, "postProcessing", "runs", label, "summary.json")
-        if not os.path.exists(done):
+        if not cached(done, tensile, shear, pressure):
             self._copy(TENSION_CASE, work)
             props = os.path.join(work, "constant", "tensionTestProperties")
             # pull at the peak about 0.56 um per kPa on the bond area (5.4e8 Pa; scales as 1/E)
@@ -210,7 +221,8 @@ def main():
     ap.add_argument("--publish", action="store_true",
                     help="run nothing; copy the finished study's csv, md, png here and its dictionary into cases/common")
     a = ap.parse_args()
-    outputs = [os.path.join(a.out, f) for f in ("particleStrengths.csv", "particleStrengths.md", "particleStrengths.png")]
+    outputs = [os.path.join(a.out, f) for f in ("particleStrengths.csv", "particleStrengths.md", "particleStrengths.png",
+                                                "particleStrengths.json")]
     if a.publish:
         iceCases.publish_files(outputs, HERE)
         iceCases.publish_files([os.path.join(a.out, "freezeBondCalibration")], COMMON)
@@ -315,11 +327,22 @@ def main():
     for d in derived:
         tag = f"check_{d['set']}_{d['choice'].split()[0]}"
         d["check"] = (checks[(tag, "tension")]["effective_Pa"], checks[(tag, "shear")]["effective_Pa"])
+    # The stated error: the fits' largest residual or the verification runs' largest
+    # deviation from the relation, whichever is larger.
+    fit_error = error
+    error = max([fit_error] + [abs(d["check"][k] / d["pred"][k] - 1) for d in derived for k in (0, 1)])
 
     write_csv(os.path.join(a.out, "particleStrengths.csv"), runs)
+    summary = {"case": "freezeBondShear", "study": "particleStrengths", "area_correction": cf,
+               "fit_error": fit_error,
+               "rubble_confinement": conf_rows, "rubble_confinement_distribution": dist,
+               "calibration_confinement_Pa": target, "applied_pressure_Pa": pressure,
+               "relation": {f"{rho:g}": r for rho, r in sorted(relation.items())}, "relative_error": error,
+               "derived": [{k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items()} for d in derived]}
+    iceCases.write_atomically(os.path.join(a.out, "particleStrengths.json"), json.dumps(summary, indent=2) + "\n")
     write_dictionary(os.path.join(a.out, "freezeBondCalibration"), relation, target, error, cf, derived)
     write_markdown(os.path.join(a.out, "particleStrengths.md"), conf_rows, dist, pressure, probe_s, probe_t,
-                   relation, error, sens, rho0, derived, cf)
+                   relation, fit_error, error, sens, rho0, derived, cf)
     plot(os.path.join(a.out, "particleStrengths.png"), sweep, relation, ratios, derived, sens, rho0, sets, cf)
     print(open(os.path.join(a.out, "particleStrengths.md")).read())
 
@@ -366,14 +389,15 @@ tensileSlopes           {column('tensileSlope')};
 tensileIntercepts       {column('tensileIntercept', fmt='{:.0f}')};    // Pa
 confinement             {confinement:.0f};        // Pa, per bond on the bond area, in the tests
 freezeToIceModulusRatio 1;
-relativeError           {error:.3f};      // the fits' largest residual
+relativeError           {error:.3f};      // the fits' largest residual or the verification runs' deviation
 
 // ************************************************************************* //
 """
     iceCases.write_atomically(path, text)
 
 
-def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, error, sens, rho0, derived, cf):
+def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, fit_error, error, sens, rho0, derived,
+                   cf):
     md = ["## Confinement", "",
           "| rubble | freeze-bonds | c_f | p_c on the real area: mean / max (kPa) | per bond on the bond area, c_f p_c: mean (kPa) |",
           "|---|---|---|---|---|"]
@@ -395,7 +419,10 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
         ratio = (r["shearSlope"] * 160e3 + r["shearIntercept"]) / (r["tensileSlope"] * rho * 160e3 + r["tensileIntercept"])
         md.append(f"| {rho:g} | {r['shearSlope']:.4f} | {kpa(r['shearIntercept'], 2)} | {100 * r['shearError']:.1f} % | "
                   f"{r['tensileSlope']:.4f} | {kpa(r['tensileIntercept'], 2)} | {100 * r['tensileError']:.1f} % | {ratio:.2f} |")
-    md += ["", f"Largest residual of all fits: **{100 * error:.1f} %** (S_p 10-400 kPa).", "",
+    md += ["", f"Largest residual of the fits: {100 * fit_error:.1f} % (S_p 10-400 kPa); largest deviation of a "
+           f"verification run (the table at the end, before and after) from the relation: "
+           f"{100 * max(abs(d['check'][k] / d['pred'][k] - 1) for d in derived for k in (0, 1)):.1f} %. The "
+           f"stated error of the relation, `relativeError`: **{100 * error:.1f} %**.", "",
            f"## Sensitivity (rho = {rho0:g} unless named; effective on the bond area, kPa)", "",
            "| variant | test | S_p (kPa) | confinement per bond (kPa) | effective (kPa) | against the relation |",
            "|---|---|---|---|---|---|"]
@@ -408,12 +435,13 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
         md.append(f"| {name} | {test} | {kpa(s_p, 0)} | {kpa(r['confinement_Pa'], 3)} | {kpa(r['effective_Pa'], 2)} | "
                   + (f"{100 * (r['effective_Pa'] / pred - 1):+.1f} %" if pred else "") + " |")
     md += ["", f"## Derived particle strengths (c_f = {cf:g}; Pa on the bond area, shown in kPa)", "",
-           "| set | tension | real T / S | effective target T / S | particle T_p / S_p | relation gives T / S | verification run T / S | shear off target |",
-           "|---|---|---|---|---|---|---|---|"]
+           "| set | tension | real T / S | effective target T / S | particle T_p / S_p | relation gives T / S | verification run T / S | run against relation T / S | shear off target |",
+           "|---|---|---|---|---|---|---|---|---|"]
     for d in derived:
         md.append(f"| {d['set']} | {d['choice']} | {kpa(d['T_real'])} / {kpa(d['S_real'])} | {kpa(d['T_eff'], 2)} / "
                   f"{kpa(d['S_eff'], 2)} | **{kpa(d['T_p'], 2)} / {kpa(d['S_p'], 2)}** | {kpa(d['pred'][0], 2)} / "
                   f"{kpa(d['pred'][1], 2)} | {kpa(d['check'][0], 2)} / {kpa(d['check'][1], 2)} | "
+                  f"{100 * (d['check'][0] / d['pred'][0] - 1):+.1f} % / {100 * (d['check'][1] / d['pred'][1] - 1):+.1f} % | "
                   f"{100 * (d['check'][1] / d['S_eff'] - 1):+.1f} % |")
     iceCases.write_atomically(path, "\n".join(md) + "\n")
 
@@ -422,7 +450,9 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 3, figsize=(16, 5))
+    from matplotlib.ticker import ScalarFormatter
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    ax = axes.ravel()
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(ratios)))
     x = np.array(SWEEP_STRENGTHS)
     for rho, col in zip(ratios, colours):
@@ -431,28 +461,68 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
         ax[0].plot(x * 1e-3, (r["shearSlope"] * x + r["shearIntercept"]) * 1e-3, "-", color=col, label=f"rho {rho:g}")
         ax[1].plot(rho * x * 1e-3, [sweep[("tension", rho, s)]["effective_Pa"] * 1e-3 for s in x], "o", color=col)
         ax[1].plot(rho * x * 1e-3, (r["tensileSlope"] * rho * x + r["tensileIntercept"]) * 1e-3, "-", color=col)
+    for d in derived:
+        marker = {"sets": "*", "iceRatio": "s"}.get(d["choice"], "x")
+        ax[0].plot(d["S_p"] * 1e-3, d["check"][1] * 1e-3, marker, color="C3", ms=10 if marker == "*" else 6,
+                   label=None)
+    ax[0].plot([], [], "*", color="C3", ms=10, label="derived, sets (verification)")
+    ax[0].plot([], [], "s", color="C3", label="derived, ice ratio")
+    ax[0].plot([], [], "x", color="C3", label="direct (before)")
     ax[0].set(xscale="log", yscale="log", xlabel="particle shear strength S_p (kPa)",
-              ylabel="effective shear strength, bond area (kPa)", title="virtual shear test")
+              ylabel="effective shear strength on the bond area (kPa)",
+              title="virtual shear test at the rubble's confinement")
     ax[0].legend(fontsize=8)
     ax[1].plot([1, 1e3], [1, 1e3], "k:", lw=0.8, label="effective = particle")
     ax[1].set(xscale="log", yscale="log", xlabel="particle tensile strength T_p (kPa)",
-              ylabel="effective tensile strength, bond area (kPa)", title="virtual tension test")
+              ylabel="effective tensile strength on the bond area (kPa)",
+              title="virtual tension test at the rubble's confinement")
     ax[1].legend(fontsize=8)
     rr = sorted(relation)
     reach = [(relation[r]["shearSlope"] * 160e3 + relation[r]["shearIntercept"])
              / (relation[r]["tensileSlope"] * r * 160e3 + relation[r]["tensileIntercept"]) for r in rr]
-    ax[2].plot(rr, reach, "o-", label="interface S_eff/T_eff (S_p 160 kPa)")
+    ax[2].plot(rr, reach, "o-", label="what the interface shows, S_eff / T_eff (S_p 160 kPa)")
+    set_ratios = {}
     for name, (t, s) in sets.items():
-        ax[2].axhline(s / t, color="C1", ls="--", lw=0.8)
-        ax[2].text(rr[-1], s / t, f" set {name}: S/T {s / t:.2f}", va="bottom", ha="right", fontsize=8, color="C1")
+        set_ratios.setdefault(round(s / t, 2), []).append(name)
+    for value, names in set_ratios.items():
+        ax[2].axhline(value, color="C1", ls="--", lw=0.8)
+        ax[2].text(rr[0], value, f"sets {', '.join(names)}: S/T {value:.2f}", va="bottom", fontsize=8, color="C1")
     ax[2].axhline(1 / ICE_RATIO, color="C2", ls="--", lw=0.8)
-    ax[2].text(rr[-1], 1 / ICE_RATIO, f" ice ratio: S/T {1 / ICE_RATIO:.2f}", va="bottom", ha="right", fontsize=8,
-               color="C2")
+    ax[2].text(rr[0], 1 / ICE_RATIO, f"ice ratio: S/T {1 / ICE_RATIO:.2f}", va="bottom", fontsize=8, color="C2")
     ax[2].set(xscale="log", yscale="log", xlabel="particle ratio rho = T_p / S_p",
-              ylabel="effective shear / tensile strength", title="what ratio the interface can show")
-    ax[2].legend(fontsize=8, loc="lower left")
+              ylabel="effective shear / tensile strength", title="which ratio an interface of our bonds can show")
+    for axis in (ax[2].xaxis, ax[2].yaxis):
+        axis.set_major_formatter(ScalarFormatter())
+        axis.set_minor_formatter(ScalarFormatter())
+    ax[2].tick_params(which="minor", labelsize=7)
+    ax[2].legend(fontsize=8, loc="center right")
+    base = {s_p: sweep[("shear", rho0, s_p)] for s_p in (40e3, 160e3)}
+    for s_p, col in ((40e3, "C0"), (160e3, "C1")):
+        points = [(base[s_p]["confinement_Pa"], base[s_p]["effective_Pa"])]
+        for name in ("half", "twice", "old25kPa"):
+            r = sens[(name, "shear", s_p)]
+            points.append((r["confinement_Pa"], r["effective_Pa"]))
+        points.sort()
+        c = relation[rho0]
+        pred = c["shearSlope"] * s_p + c["shearIntercept"]
+        ax[3].plot([p[0] * 1e-3 for p in points], [p[1] / pred for p in points], "o-", color=col,
+                   label=f"shear, S_p {s_p * 1e-3:g} kPa")
+        tens = [(base[s_p]["confinement_Pa"], sweep[("tension", rho0, s_p)]["effective_Pa"])]
+        for name in ("half", "twice", "old25kPa"):
+            r = sens[(name, "tension", s_p)]
+            tens.append((r["confinement_Pa"], r["effective_Pa"]))
+        tens.sort()
+        tpred = c["tensileSlope"] * rho0 * s_p + c["tensileIntercept"]
+        ax[3].plot([p[0] * 1e-3 for p in tens], [p[1] / tpred for p in tens], "s--", color=col,
+                   label=f"tension, S_p {s_p * 1e-3:g} kPa")
+    ax[3].axvline(base[40e3]["confinement_Pa"] * 1e-3, color="k", lw=0.8, ls=":")
+    ax[3].text(base[40e3]["confinement_Pa"] * 1e-3, 1.6, " rubble (mean)", fontsize=8)
+    ax[3].set(xscale="log", xlabel="confinement per bond on the bond area (kPa)",
+              ylabel="effective strength / relation at the rubble's confinement",
+              title=f"confinement (rho {rho0:g}): the old test's 25 kPa is 11.5 kPa per bond")
+    ax[3].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path + ".tmp.png", dpi=110)
+    fig.savefig(path + ".tmp.png", dpi=100)
     os.replace(path + ".tmp.png", path)
 
 
