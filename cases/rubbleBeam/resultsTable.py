@@ -33,8 +33,12 @@ ROWS = [
     ("confinement on the real area",
      lambda s: f"{s['confinement_mean_Pa'] / 1e3:.2f} kPa mean, {s['confinement_max_Pa'] / 1e3:.1f} kPa max"),
     ("c_f (heat balance)", lambda s: f"{s['area_correction']:.3f}"),
-    ("freeze-bond strength on the bond area",
-     lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"),
+    ("freeze-bond strength on the bond area: effective (c_f x the set's)",
+     lambda s: f"tensile {s.get('freeze_bond_effective_tensile_mean_Pa', s['freeze_bond_tensile_mean_Pa']) / 1e3:.2f} kPa, "
+               f"shear {s.get('freeze_bond_effective_shear_mean_Pa', s['freeze_bond_shear_mean_Pa']) / 1e3:.1f} kPa"),
+    ("particle-level (what the bonds break at)",
+     lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"
+               f" ({s.get('freeze_bond_particle_strengths', 'direct')})"),
     ("wall time, build + settle + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
 ]
 

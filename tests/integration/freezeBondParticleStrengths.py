@@ -67,8 +67,12 @@ effective = s["effective_shear_strength_Pa"] * s["specimen_area_m2"] / s["freeze
 check(s["failed"] and abs(effective / target_shear - 1) <= tolerance,
       f"particle {t_p:.0f} / {s_p:.0f} Pa give an effective shear strength of {effective:.0f} Pa on the bond area "
       f"against the set's c_f x 88.8 kPa = {target_shear:.0f} Pa (within {100 * tolerance:.1f} %: "
-      f"{100 * (effective / target_shear - 1):+.2f} %); measured confinement {s['mean_measured_confinement_Pa']:.0f} Pa "
-      f"per bond against the calibration's {confinement:.0f}")
+      f"{100 * (effective / target_shear - 1):+.2f} %)")
+# The bonds' confinement (on the real area, c_f of the rubble's dictionary) is the calibration's.
+measured = cf * s["mean_measured_confinement_Pa"]
+check(abs(measured / confinement - 1) < 0.1,
+      f"confinement per bond on the bond area {measured:.0f} Pa (c_f x {s['mean_measured_confinement_Pa']:.0f} Pa "
+      f"on the real area) against the calibration's {confinement:.0f} Pa (within 10 %)")
 
 # Tension: the same bonds pulled; what the relation predicts for them.
 tension = iceCases.copy_case(tension_case, os.path.join(work, "tension"))
