@@ -5,7 +5,7 @@ The rubble's freeze-bonds should show, on their DEM bond area, the effective
 strengths c_f x (laboratory strength) of freezeBondSets.csv. What a bond
 breaks at (its particle-level strengths T_p, S_p) is not what an interface of
 such bonds shows: this study runs our two virtual tests (cases/freezeBondShear,
-cases/freezeBondTension, their applications unchanged, strengths and
+cases/freezeBondTension, their applications with the strengths and the
 confinement on the command line) at the confinement the rubble's freeze-bonds
 form under, fits the effective strengths against the particle ones, and
 inverts the relation for each freeze-bond set.
@@ -269,7 +269,7 @@ def main():
                 sens[(name, test, s_p)] = submit(test, f"{name}_rho{rho0:g}_S{s_p:g}", rho0, s_p,
                                                  factor or 1.0, applied)
     for test in ("shear", "tension"):
-        sens[("old25kPa_rho1", test, 160e3)] = submit(test, f"old25kPa_rho1_S160000", 1.0, 160e3, applied=OLD_CONFINEMENT)
+        sens[("old25kPa_rho1", test, 160e3)] = submit(test, "old25kPa_rho1_S160000", 1.0, 160e3, applied=OLD_CONFINEMENT)
         sens[("slower", test, 160e3)] = submit(test, f"slower_rho{rho0:g}_S160000", rho0, 160e3, slow=2.0)
     soft = Runner(os.path.join(a.out, "modulus1.95e8"), modulus=1.95e8)
     for test in ("shear", "tension"):
