@@ -6,8 +6,8 @@ cases/freezeBondTension) given the rubble's freeze-bond dictionary
 calibrated), at the calibration's confinement. The bonds get the particle
 strengths the C++ derives; the plane must then show the set's effective shear
 strength c_f x 88.8 kPa on the bond area, and the tension the relation
-predicts, each within the calibration's stated relativeError (and 1 %
-for the loading rate and the confinement's rounding). A bad particleStrengths
+predicts, each within the calibration's stated relativeError (the fits'
+largest residual or the study's verification runs' largest deviation). A bad particleStrengths
 name is refused naming the file and the entry.
 
 usage: freezeBondParticleStrengths.py SHEAR_CASE TENSION_CASE WORKDIR SHEAR_APP TENSION_APP"""
@@ -44,7 +44,7 @@ def scalar(text):
 common = os.path.join(iceCases.TOP, "cases", "common", "freezeBondProperties")
 calibration = os.path.join(iceCases.TOP, "cases", "common", "freezeBondCalibration")
 cf = scalar(iceCases.get_entry(common, "areaCorrection.value"))
-tolerance = scalar(iceCases.get_entry(calibration, "relativeError")) + 0.01
+tolerance = scalar(iceCases.get_entry(calibration, "relativeError"))
 confinement = scalar(iceCases.get_entry(calibration, "confinement"))
 # Per bond, the tests measure 0.46 of the applied end pressure (83 bonds of 2.3 times the cross-section).
 pressure = confinement / 0.46
