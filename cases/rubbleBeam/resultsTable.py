@@ -44,8 +44,12 @@ ROWS = [
     ("block surface bonded (DEM bond area)",
      lambda s: f"{100 * s['bonded_surface_fraction']:.2f} %" if "bonded_surface_fraction" in s else "-"),
     ("c_f (heat balance)", lambda s: f"{s['area_correction']:.3f}"),
-    ("freeze-bond strength on the bond area",
-     lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"),
+    ("freeze-bond strength on the bond area: effective (c_f x the set's)",
+     lambda s: f"tensile {s.get('freeze_bond_effective_tensile_mean_Pa', s['freeze_bond_tensile_mean_Pa']) / 1e3:.2f} kPa, "
+               f"shear {s.get('freeze_bond_effective_shear_mean_Pa', s['freeze_bond_shear_mean_Pa']) / 1e3:.1f} kPa"),
+    ("particle-level (what the bonds break at)",
+     lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"
+               f" ({s.get('freeze_bond_particle_strengths', 'direct')})"),
     ("wall time, build + settle + compact + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
 ]
 

@@ -1,7 +1,8 @@
 // freezeBondShearDEM: the virtual freeze-bond shear test, asymmetric
 // four-point bending (scenes.md section 4).
 //
-// Usage: freezeBondShearDEM [-case DIR] [-label NAME] [-shearStrength PA] [-youngsModulus PA]
+// Usage: freezeBondShearDEM [-case DIR] [-label NAME] [-shearStrength PA] [-tensileStrength PA]
+//                           [-youngsModulus PA] [-pressure PA]
 // Reads  constant/{iceProperties,freezeBondProperties,shearTestProperties},
 //        DEM/in.freezeBondShear
 // Writes postProcessing/runs/<label>/{summary.json,loadSlip.csv,breakage.h5}

@@ -5,6 +5,7 @@
 // bond carries, constant/freezeBondProperties), unloaded and pulled apart.
 //
 // Usage: freezeBondTensionDEM [-case DIR] [-pressure PA] [-time MIN] [-label NAME]
+//                             [-tensileStrength PA] [-shearStrength PA]
 // Reads  constant/{iceProperties,freezeBondProperties,tensionTestProperties},
 //        DEM/in.freezeBondTension
 // Writes postProcessing/runs/<label>/{summary.json,forceDisplacement.csv,breakage.h5}

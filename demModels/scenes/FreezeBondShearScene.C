@@ -36,11 +36,15 @@ ShearTestSettings ShearTestSettings::read(int argc, char** argv)
 {
     ShearTestSettings s;
     s.specimen.halfLength = 0.1;
+    double pressure = -1.0;
     CommandLine("freezeBondShearDEM")
         .text("-case", "DIR", "the case directory (default .)", s.caseDir)
         .text("-label", "NAME", "results go to postProcessing/runs/NAME", s.label)
         .positive("-shearStrength", "PA", "particle-level freeze-bond shear strength", s.shearStrength)
+        .positive("-tensileStrength", "PA", "particle-level freeze-bond tensile strength (default: -shearStrength's)",
+                  s.tensileStrength)
         .positive("-youngsModulus", "PA", "freeze-bond Young's modulus", s.youngsModulus)
+        .positive("-pressure", "PA", "confinement pressure instead of loading.confinementPressure", pressure)
         .parse(argc, argv);
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/shearTestProperties");
     d.checkKeys({"specimen", "loading"});
@@ -58,6 +62,7 @@ ShearTestSettings ShearTestSettings::read(int argc, char** argv)
     s.maxLoad = l.getPositiveScalarOrDefault("maxLoad", s.maxLoad);
     s.samples = l.getLabelOrDefault("samples", s.samples);
     if (s.samples < 10) l.fail("samples", "must be at least 10");
+    if (pressure > 0.0) s.confinementPressure = pressure;
     if (s.label.empty())
     {
         std::ostringstream label;
@@ -75,9 +80,14 @@ FreezeBondShearScene::FreezeBondShearScene(MPI_Comm comm, const ShearTestSetting
     area_(M_PI*0.25*settings.specimen.diameter*settings.specimen.diameter),
     curve_({"time_s", "load_N", "shear_force_N", "tau_max_Pa", "slip_m", "intact_freeze_bonds"})
 {
-    if (settings_.shearStrength > 0.0)
+    if (settings_.shearStrength > 0.0 || settings_.tensileStrength > 0.0)
     {
-        specimen_.freezeBondProperties().setSetStrengths(settings_.shearStrength, settings_.shearStrength);
+        // The set's own strengths where only one is overridden (fixedSet: the same at any confinement).
+        const FreezeBondStrengthModel& set = specimen_.freezeBondProperties().strengthModel();
+        const double shear = settings_.shearStrength > 0.0 ? settings_.shearStrength : set.shear(set.tensile(0.0));
+        const double tensile = settings_.tensileStrength > 0.0 ? settings_.tensileStrength
+            : settings_.shearStrength > 0.0 ? settings_.shearStrength : set.tensile(0.0);
+        specimen_.freezeBondProperties().setSetStrengths(tensile, shear);
     }
     if (settings_.youngsModulus > 0.0)
     {
@@ -201,6 +211,7 @@ void FreezeBondShearScene::writeSummary(double wallSeconds) const
     j["case"] = "freezeBondShear";
     j["label"] = settings_.label;
     j["particle_shear_strength_Pa"] = stats.meanShear;
+    j["particle_tensile_strength_Pa"] = stats.meanTensile;
     j["freeze_youngs_modulus_Pa"] = specimen_.ice().family(BondFamily::freeze).youngsModulus;
     j["a"] = a_;
     j["peak_load_N"] = peakLoad_;
@@ -211,6 +222,9 @@ void FreezeBondShearScene::writeSummary(double wallSeconds) const
     j["breaks_in_shear"] = shearBreaks;
     j["breaks"] = long(specimen_.breakage().size());
     j["confinement_pressure_Pa"] = settings_.confinementPressure;
+    j["mean_measured_confinement_Pa"] = stats.meanConfinement;
+    j["specimen_area_m2"] = area_;
+    j["freeze_bond_area_m2"] = specimen_.freezeBondArea();
     specimen_.addRunFigures(j, wallSeconds);
     writeFileAtomically(dir + "/summary.json", jsonText(j));
 }

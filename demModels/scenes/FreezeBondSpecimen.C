@@ -53,6 +53,7 @@ FreezeBondSpecimen::FreezeBondSpecimen
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
     freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    freezeBondProperties_.checkIce(ice_, context_.path("constant/iceProperties"));
     if (submersionTime > 0.0)
     {
         freezeBondProperties_.setSubmersionTime(submersionTime);
@@ -285,6 +286,17 @@ void FreezeBondSpecimen::addRunFigures(Json& j, double wallSeconds) const
     j["dt"] = dt_;
     j["ranks"] = long(context_.ranks());
     j["wall_s"] = wallSeconds;
+}
+
+
+double FreezeBondSpecimen::freezeBondArea() const
+{
+    double area = 0.0;
+    for (const NewFreezeBond& b : freezeBonds_)
+    {
+        area += bondArea(ice_.family(BondFamily::freeze), particles_[b.pair.i].radius, particles_[b.pair.j].radius);
+    }
+    return area;
 }
 
 

@@ -41,6 +41,9 @@ TensionTestSettings TensionTestSettings::read(int argc, char** argv)
         .text("-label", "NAME", "results go to postProcessing/runs/NAME", s.label)
         .positive("-pressure", "PA", "confinement pressure instead of loading.confinementPressure", pressure)
         .positive("-time", "MIN", "submersion time instead of constant/freezeBondProperties'", time)
+        .positive("-tensileStrength", "PA", "the fixed set's tensile strength (strengthModel fixedSet)",
+                  s.tensileStrength)
+        .positive("-shearStrength", "PA", "the fixed set's shear strength (strengthModel fixedSet)", s.shearStrength)
         .parse(argc, argv);
     const Dictionary d = Dictionary::readFile(s.caseDir + "/constant/tensionTestProperties");
     d.checkKeys({"specimen", "loading"});
@@ -74,6 +77,14 @@ FreezeBondTensionScene::FreezeBondTensionScene(MPI_Comm comm, const TensionTestS
     curve_({"time_s", "pull_m", "force_N", "stress_Pa", "intact_freeze_bonds"})
 {
     settings_.submersionTime = specimen_.freezeBondProperties().submersionTime();
+    if (settings_.tensileStrength > 0.0 || settings_.shearStrength > 0.0)
+    {
+        // The set's own strength where only one is overridden (fixedSet: the same at any confinement).
+        const FreezeBondStrengthModel& set = specimen_.freezeBondProperties().strengthModel();
+        const double tensile = settings_.tensileStrength > 0.0 ? settings_.tensileStrength : set.tensile(0.0);
+        const double shear = settings_.shearStrength > 0.0 ? settings_.shearStrength : set.shear(set.tensile(0.0));
+        specimen_.freezeBondProperties().setSetStrengths(tensile, shear);
+    }
 }
 
 
@@ -175,6 +186,8 @@ void FreezeBondTensionScene::writeSummary(double wallSeconds) const
     j["confinement_reaction_N"] = confinementReaction_;
     j["bond_tensile_strength_mean_Pa"] = stats.meanTensile;
     j["bond_tensile_strength_sd_Pa"] = stats.sdTensile;
+    j["bond_shear_strength_mean_Pa"] = stats.meanShear;
+    j["freeze_bond_area_m2"] = specimen_.freezeBondArea();
     j["bond_tensile_strengths_Pa"] = strengths;
     specimen_.addRunFigures(j, wallSeconds);
     writeFileAtomically(dir + "/summary.json", jsonText(j));

@@ -7,6 +7,7 @@
 #include "BondBuilder.H"
 #include "BondedBody.H"
 #include "Dictionary.H"
+#include "FixedSetStrength.H"
 #include "FreezeBonding.H"
 #include "GivenAreaCorrection.H"
 #include "IceBondForces.H"
@@ -203,6 +204,7 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
     freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    freezeBondProperties_.checkIce(ice_, context_.path("constant/iceProperties"));
     if (!dynamic_cast<const GivenAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
@@ -608,7 +610,10 @@ void RidgeScene::assemble()
     MPI_Barrier(context_.comm());
     std::ostringstream msg;
     msg << "Bonds: " << iceBonds.size() << " ice bonds (blocks and layer), " << freezeStats.bonds
-        << " freeze-bonds (" << layerToKeel << " between layer and keel); tensile "
+        << " freeze-bonds (" << layerToKeel << " between layer and keel); confinement "
+        << freezeStats.meanConfinement * 1e-3 << " kPa mean, " << freezeStats.maxConfinement * 1e-3
+        << " kPa max on the real area; effective tensile " << freezeStats.meanEffectiveTensile * 1e-3
+        << " kPa, shear " << freezeStats.meanEffectiveShear * 1e-3 << " kPa; particle-level tensile "
         << freezeStats.meanTensile * 1e-3 << " kPa, shear " << freezeStats.meanShear * 1e-3
         << " kPa on the bond area (" << freezeBondProperties_.summary() << "); " << fixedEnds
         << " particles fixed at the ends; depth " << geometry.depth() << " m; assembled in "
@@ -815,6 +820,18 @@ void RidgeScene::load()
         writeGeometry(geometry, ridge.particles);
     }
     layerFirstTag_ = geometry.keelParticles + 1;
+    // The freeze-bonds' strengths as assembled, for the summary.
+    freezeBondCount_ = 0;
+    double sumTensile = 0.0, sumShear = 0.0;
+    for (const BondState& b : ridge.bonds)
+    {
+        if (b.family != BondFamily::freeze) continue;
+        ++freezeBondCount_;
+        sumTensile += b.tensileStrength;
+        sumShear += b.shearStrength;
+    }
+    freezeParticleStrength_ = freezeBondCount_ > 0
+        ? BondStrengthPair{sumTensile/freezeBondCount_, sumShear/freezeBondCount_} : BondStrengthPair{};
 
     std::vector<ParticleSpec> particles(ridge.particles.size());
     std::vector<int> types(ridge.particles.size());
@@ -1076,6 +1093,27 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
         if (curve.row(k)[PlatenLoading::travelColumn] == travelAtPeak) reactionAtPeak = curve.row(k)[reactionColumn];
     }
     j["support_reaction_at_peak_N"] = reactionAtPeak;
+    // The freeze-bonds of DEM/ridge.h5: the particle-level strengths they break at
+    // (means), the effective ones the set asks for (c_f times the real strengths,
+    // on the bond area; a fixed set's are the same for every bond) and, when
+    // calibrated, what the virtual tests give with the particle strengths.
+    const FreezeBondParticleStrength& particleStrength = freezeBondProperties_.particleStrength();
+    j["freeze_bonds"] = freezeBondCount_;
+    j["freeze_bond_particle_strengths"] = particleStrength.name();
+    if (dynamic_cast<const FixedSetStrength*>(&freezeBondProperties_.strengthModel()))
+    {
+        const FreezeBondStrength set = freezeBondProperties_.strength(0.0, 1.0);
+        j["freeze_bond_effective_tensile_Pa"] = set.effectiveTensile;
+        j["freeze_bond_effective_shear_Pa"] = set.effectiveShear;
+    }
+    j["freeze_bond_particle_tensile_mean_Pa"] = freezeParticleStrength_.tensile;
+    j["freeze_bond_particle_shear_mean_Pa"] = freezeParticleStrength_.shear;
+    if (particleStrength.name() != "direct")
+    {
+        const BondStrengthPair virtualTests = particleStrength.effective(freezeParticleStrength_);
+        j["freeze_bond_virtual_test_tensile_Pa"] = virtualTests.tensile;
+        j["freeze_bond_virtual_test_shear_Pa"] = virtualTests.shear;
+    }
     j["peak_force_N"] = peak;
     j["travel_at_peak_m"] = travelAtPeak;
     j["force_at_start_N"] = startForce;

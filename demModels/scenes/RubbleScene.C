@@ -192,6 +192,7 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
     freezeBondProperties_ = FreezeBondProperties::read(context_.path("constant/freezeBondProperties"));
+    freezeBondProperties_.checkIce(ice_, context_.path("constant/iceProperties"));
     if (dynamic_cast<const InterfaceAreaCorrection*>(&freezeBondProperties_.areaCorrection()))
     {
         throw InputError(context_.path("constant/freezeBondProperties"), "areaCorrection.model",
@@ -866,9 +867,11 @@ void RubbleScene::freezeBond()
     msg << "Freeze-bonds: " << freezeStats_.bonds << " between " << freezeStats_.blockContacts
         << " touching block pairs (" << freezeStats_.meanBondsPerBlockContact << " per block contact); confinement "
         << freezeStats_.meanConfinement*1e-3 << " kPa mean, " << freezeStats_.maxConfinement*1e-3
-        << " kPa max; tensile " << freezeStats_.meanTensile*1e-3 << " +- " << freezeStats_.sdTensile*1e-3
-        << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- " << freezeStats_.sdShear*1e-3
-        << " kPa on the bond area; " << freezeBondProperties_.summary() << "; " << fixed << " particles fixed at the ends";
+        << " kPa max; effective tensile " << freezeStats_.meanEffectiveTensile*1e-3 << " kPa, shear "
+        << freezeStats_.meanEffectiveShear*1e-3 << " kPa; particle-level tensile " << freezeStats_.meanTensile*1e-3
+        << " +- " << freezeStats_.sdTensile*1e-3 << " kPa, shear " << freezeStats_.meanShear*1e-3 << " +- "
+        << freezeStats_.sdShear*1e-3 << " kPa on the bond area; " << freezeBondProperties_.summary() << "; "
+        << fixed << " particles fixed at the ends";
     context_.log(msg.str());
 }
 
@@ -940,10 +943,23 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["freeze_bonds"] = long(freezeStats_.bonds);
     j["block_contacts"] = long(freezeStats_.blockContacts);
     j["mean_bonds_per_block_contact"] = freezeStats_.meanBondsPerBlockContact;
+    // Effective: c_f times the real strengths; the others are the particle-level
+    // strengths the bonds break at (the same with particleStrengths direct).
+    j["freeze_bond_particle_strengths"] = freezeBondProperties_.particleStrength().name();
+    j["freeze_bond_effective_tensile_mean_Pa"] = freezeStats_.meanEffectiveTensile;
+    j["freeze_bond_effective_shear_mean_Pa"] = freezeStats_.meanEffectiveShear;
     j["freeze_bond_tensile_mean_Pa"] = freezeStats_.meanTensile;
     j["freeze_bond_tensile_sd_Pa"] = freezeStats_.sdTensile;
     j["freeze_bond_shear_mean_Pa"] = freezeStats_.meanShear;
     j["freeze_bond_shear_sd_Pa"] = freezeStats_.sdShear;
+    if (freezeBondProperties_.particleStrength().name() != "direct")
+    {
+        // What the virtual tests give with the mean particle strengths.
+        const BondStrengthPair virtualTests =
+            freezeBondProperties_.particleStrength().effective({freezeStats_.meanTensile, freezeStats_.meanShear});
+        j["freeze_bond_virtual_test_tensile_Pa"] = virtualTests.tensile;
+        j["freeze_bond_virtual_test_shear_Pa"] = virtualTests.shear;
+    }
     j["confinement_mean_Pa"] = freezeStats_.meanConfinement;
     j["confinement_max_Pa"] = freezeStats_.maxConfinement;
     j["area_correction"] = freezeBondProperties_.areaCorrection().value();

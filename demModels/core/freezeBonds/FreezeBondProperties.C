@@ -18,13 +18,15 @@ FreezeBondProperties FreezeBondProperties::read(const std::string& path)
 
 FreezeBondProperties FreezeBondProperties::fromDictionary(const Dictionary& d)
 {
-    d.checkKeys({"submersionTime", "strengthModel", "confinementLineCoeffs", "fixedSetCoeffs", "areaCorrection"});
+    d.checkKeys({"submersionTime", "strengthModel", "confinementLineCoeffs", "fixedSetCoeffs", "areaCorrection",
+                 "particleStrengths", "calibratedCoeffs"});
     FreezeBondProperties p;
     p.fileName_ = d.fileName();
     const double submersionTime = d.getScalar("submersionTime");
     p.strengthModel_ = FreezeBondStrengthModel::New(d);
     p.strengthModel_->setSubmersionTime(submersionTime);
     p.areaCorrection_ = FreezeBondAreaCorrection::New(d.subDict("areaCorrection"));
+    p.particleStrength_ = FreezeBondParticleStrength::New(d);
     return p;
 }
 
@@ -47,8 +49,11 @@ FreezeBondStrength FreezeBondProperties::strength(double contactForce, double bo
     s.confinement = std::max(0.0, contactForce)/(cf*bondArea);
     const double realTensile = strengthModel_->tensile(s.confinement);
     const double realShear = strengthModel_->shear(realTensile);
-    s.tensile = cf*realTensile;
-    s.shear = cf*realShear;
+    s.effectiveTensile = cf*realTensile;
+    s.effectiveShear = cf*realShear;
+    const BondStrengthPair particle = particleStrength_->particle({s.effectiveTensile, s.effectiveShear});
+    s.tensile = particle.tensile;
+    s.shear = particle.shear;
     return s;
 }
 
@@ -57,6 +62,10 @@ std::string FreezeBondProperties::summary() const
 {
     std::ostringstream out;
     out << strengthModel_->summary() << "; area correction c_f = " << areaCorrection_->value();
+    if (particleStrength_->name() != "direct")
+    {
+        out << "; " << particleStrength_->summary();
+    }
     return out.str();
 }
 

@@ -104,7 +104,7 @@ FreezeBondingStatistics freezeBondingStatistics
         return s;
     }
     std::set<std::pair<int, int>> blockPairs;
-    double sumT = 0, sumT2 = 0, sumS = 0, sumS2 = 0, sumP = 0;
+    double sumT = 0, sumT2 = 0, sumS = 0, sumS2 = 0, sumP = 0, sumET = 0, sumES = 0;
     for (const NewFreezeBond& b : bonds)
     {
         const int ba = particles[b.pair.i].block, bb = particles[b.pair.j].block;
@@ -114,6 +114,8 @@ FreezeBondingStatistics freezeBondingStatistics
         sumS += b.strength.shear;
         sumS2 += b.strength.shear*b.strength.shear;
         sumP += b.strength.confinement;
+        sumET += b.strength.effectiveTensile;
+        sumES += b.strength.effectiveShear;
         s.maxConfinement = std::max(s.maxConfinement, b.strength.confinement);
     }
     const double n = s.bonds;
@@ -124,6 +126,8 @@ FreezeBondingStatistics freezeBondingStatistics
     s.meanShear = sumS/n;
     s.sdShear = std::sqrt(std::max(0.0, sumS2/n - s.meanShear*s.meanShear));
     s.meanConfinement = sumP/n;
+    s.meanEffectiveTensile = sumET/n;
+    s.meanEffectiveShear = sumES/n;
     return s;
 }
 

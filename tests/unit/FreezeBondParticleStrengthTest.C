@@ -1,0 +1,186 @@
+// particleStrengths of constant/freezeBondProperties: direct (the effective
+// strengths c_f x real on the bonds, as before) and calibrated (the virtual
+// tests' relation inverted, cases/common/freezeBondCalibration).
+
+#include "CalibratedParticleStrength.H"
+#include "Dictionary.H"
+#include "DirectParticleStrength.H"
+#include "FreezeBondProperties.H"
+#include "IceProperties.H"
+#include "InputError.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+using namespace iceDEM;
+
+namespace
+{
+
+const std::string set4h = R"(
+    submersionTime 240;
+    strengthModel fixedSet;
+    fixedSetCoeffs
+    {
+        set 4h;
+        sets { 4h { tensile 26.9e3; shear 88.8e3; } iceRatio { tensile 195e3; shear 88.8e3; } }
+    }
+    areaCorrection { model given; value 0.197; }
+)";
+
+// A small relation: two ratios, shear with an intercept, tension without.
+const std::string calibrated = R"(
+    particleStrengths calibrated;
+    calibratedCoeffs
+    {
+        ratios              (0.25 2.5);
+        shearSlopes         (0.40 1.30);
+        shearIntercepts     (400 200);
+        tensileSlopes       (0.96 0.90);
+        tensileIntercepts   (0 100);
+        confinement             400;
+        freezeToIceModulusRatio 1;
+        relativeError           0.02;
+    }
+)";
+
+FreezeBondProperties propertiesFrom(const std::string& text)
+{
+    return FreezeBondProperties::fromDictionary(Dictionary::parse(text, "constant/freezeBondProperties"));
+}
+
+std::string messageOf(const std::function<void()>& f)
+{
+    try { f(); }
+    catch (const InputError& e) { return e.what(); }
+    return "accepted";
+}
+
+const double bondArea = M_PI*0.0275*0.0275;
+
+} // namespace
+
+
+TEST(FreezeBondParticleStrength, SelectedByNameDirectWhenAbsent)
+{
+    EXPECT_EQ(FreezeBondParticleStrength::names(), (std::vector<std::string>{"direct", "calibrated"}));
+    const auto absent = propertiesFrom(set4h);
+    EXPECT_NE(dynamic_cast<const DirectParticleStrength*>(&absent.particleStrength()), nullptr);
+    const auto direct = propertiesFrom(set4h + "particleStrengths direct;");
+    EXPECT_EQ(direct.particleStrength().name(), "direct");
+    const auto c = propertiesFrom(set4h + calibrated);
+    EXPECT_NE(dynamic_cast<const CalibratedParticleStrength*>(&c.particleStrength()), nullptr);
+}
+
+
+TEST(FreezeBondParticleStrength, DirectKeepsTheOldStrengthsAndSummary)
+{
+    // The strengths and the summary line before particleStrengths existed.
+    for (const std::string& text : {set4h, set4h + "particleStrengths direct;"})
+    {
+        const FreezeBondStrength s = propertiesFrom(text).strength(0.5, bondArea);
+        EXPECT_DOUBLE_EQ(s.tensile, 0.197*26.9e3);
+        EXPECT_DOUBLE_EQ(s.shear, 0.197*88.8e3);
+        EXPECT_DOUBLE_EQ(s.effectiveTensile, s.tensile);
+        EXPECT_DOUBLE_EQ(s.effectiveShear, s.shear);
+        EXPECT_EQ(propertiesFrom(text).summary(),
+                  "freeze-bond set 4h: tensile 26.9 kPa, shear 88.8 kPa; area correction c_f = 0.197");
+    }
+}
+
+
+TEST(FreezeBondParticleStrength, CalibratedMeetsTheShearAndKeepsTheRatio)
+{
+    const auto p = propertiesFrom(set4h + calibrated);
+    const FreezeBondStrength s = p.strength(0.5, bondArea);
+    EXPECT_DOUBLE_EQ(s.effectiveTensile, 0.197*26.9e3);
+    EXPECT_DOUBLE_EQ(s.effectiveShear, 0.197*88.8e3);
+    // rho = 26.9 / 88.8 = 0.3029: the relation interpolated between 0.25 and 2.5
+    const double rho = 26.9/88.8;
+    const double w = (rho - 0.25)/2.25;
+    const double slope = 0.40 + w*(1.30 - 0.40), intercept = 400 + w*(200 - 400);
+    EXPECT_NEAR(s.shear, (0.197*88.8e3 - intercept)/slope, 1e-9*s.shear);
+    EXPECT_NEAR(s.tensile/s.shear, rho, 1e-12);
+    // the relation gives back the effective shear; the tension is what it gives
+    const BondStrengthPair back = p.particleStrength().effective({s.tensile, s.shear});
+    EXPECT_NEAR(back.shear, s.effectiveShear, 1e-9*s.effectiveShear);
+    const double tensileSlope = 0.96 + w*(0.90 - 0.96), tensileIntercept = w*100;
+    EXPECT_NEAR(back.tensile, tensileSlope*s.tensile + tensileIntercept, 1e-9*back.tensile);
+    EXPECT_NE(p.summary().find("particle strengths calibrated (virtual tests at 0.4 kPa on the bond area"),
+              std::string::npos) << p.summary();
+}
+
+
+TEST(FreezeBondParticleStrength, BadNameNamesFileAndEntry)
+{
+    const std::string m = messageOf([] { propertiesFrom(set4h + "particleStrengths derived;"); });
+    EXPECT_NE(m.find("constant/freezeBondProperties"), std::string::npos) << m;
+    EXPECT_NE(m.find("entry 'particleStrengths'"), std::string::npos) << m;
+    EXPECT_NE(m.find("unknown value 'derived'; allowed: direct calibrated"), std::string::npos) << m;
+    const std::string typo = messageOf([] { propertiesFrom(set4h + "particleStrength direct;"); });
+    EXPECT_NE(typo.find("particleStrength"), std::string::npos) << typo;
+    const std::string missing = messageOf([] { propertiesFrom(set4h + "particleStrengths calibrated;"); });
+    EXPECT_NE(missing.find("entry 'calibratedCoeffs'"), std::string::npos) << missing;
+}
+
+
+TEST(FreezeBondParticleStrength, CalibratedRefusesWhatItCannotGive)
+{
+    // a ratio outside the table (the ice ratio 2.2 is inside, 10 is not)
+    auto wide = propertiesFrom(set4h + calibrated);
+    EXPECT_NO_THROW(wide.setSetStrengths(195e3, 88.8e3));
+    EXPECT_NO_THROW(wide.strength(0.0, bondArea));
+    wide.setSetStrengths(888e3, 88.8e3);
+    const std::string ratio = messageOf([&] { wide.strength(0.0, bondArea); });
+    EXPECT_NE(ratio.find("entry 'calibratedCoeffs.ratios'"), std::string::npos) << ratio;
+    EXPECT_NE(ratio.find("ratio of 10 lies outside the calibrated ratios (0.25 to 2.5)"), std::string::npos) << ratio;
+    // an effective shear below what the confinement alone gives (1 Pa set, c_f 0.197)
+    auto weak = propertiesFrom(set4h + calibrated);
+    weak.setSetStrengths(0.3, 1.0);
+    const std::string low = messageOf([&] { weak.strength(0.0, bondArea); });
+    EXPECT_NE(low.find("entry 'calibratedCoeffs.shearIntercepts'"), std::string::npos) << low;
+    // bad tables
+    const std::string order = messageOf([] {
+        std::string t = calibrated;
+        t.replace(t.find("(0.25 2.5)"), 10, "(2.5 0.25)");
+        propertiesFrom(set4h + t);
+    });
+    EXPECT_NE(order.find("entry 'calibratedCoeffs.ratios'"), std::string::npos) << order;
+    const std::string count = messageOf([] {
+        std::string t = calibrated;
+        t.replace(t.find("(0.40 1.30)"), 11, "(0.40)");
+        propertiesFrom(set4h + t);
+    });
+    EXPECT_NE(count.find("entry 'calibratedCoeffs.shearSlopes'"), std::string::npos) << count;
+}
+
+
+TEST(FreezeBondParticleStrength, CalibratedHoldsForItsModulusRatioOnly)
+{
+    const auto p = propertiesFrom(set4h + calibrated);
+    IceProperties ice;
+    ice.families[static_cast<int>(BondFamily::ice)].youngsModulus = 1.95e8;
+    ice.families[static_cast<int>(BondFamily::freeze)].youngsModulus = 1.95e8;
+    EXPECT_NO_THROW(p.checkIce(ice, "constant/iceProperties"));
+    ice.families[static_cast<int>(BondFamily::freeze)].youngsModulus = 5.4e8;
+    const std::string m = messageOf([&] { p.checkIce(ice, "constant/iceProperties"); });
+    EXPECT_NE(m.find("entry 'calibratedCoeffs.freezeToIceModulusRatio'"), std::string::npos) << m;
+    EXPECT_NE(m.find("constant/iceProperties"), std::string::npos) << m;
+    // direct holds for any
+    EXPECT_NO_THROW(propertiesFrom(set4h).checkIce(ice, "constant/iceProperties"));
+}
+
+
+TEST(FreezeBondParticleStrength, SharedDictionaryReadsAndMeetsItsShear)
+{
+    // cases/common/freezeBondProperties with its #include of freezeBondCalibration
+    const auto p = FreezeBondProperties::read(ICEDEM_SOURCE_DIR "/cases/common/freezeBondProperties");
+    ASSERT_EQ(p.particleStrength().name(), "calibrated");
+    const FreezeBondStrength s = p.strength(0.0, bondArea);
+    const BondStrengthPair back = p.particleStrength().effective({s.tensile, s.shear});
+    EXPECT_NEAR(back.shear, s.effectiveShear, 1e-9*s.effectiveShear);
+    EXPECT_GT(s.shear, 0.0);
+    EXPECT_NEAR(s.tensile/s.shear, 26.9/88.8, 1e-12);
+}
