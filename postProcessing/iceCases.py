@@ -165,13 +165,14 @@ def copy_common(case_copy):
 def copy_case(source, target):
     shutil.rmtree(target, ignore_errors=True)
     os.makedirs(target)
+    # the case's inputs only: what a run of the source wrote into DEM/ (saved stages,
+    # checkpoints, LIGGGHTS restarts and data files) stays behind
+    generated = shutil.ignore_patterns("*.h5", "*.data", "*.restart.*", "checkpoint*", "variables.generated",
+                                       "platen.stl", "*.tmp")
     for sub in ("constant", "system", "DEM"):
         if os.path.isdir(os.path.join(source, sub)):
-            shutil.copytree(os.path.join(source, sub), os.path.join(target, sub))
-    for generated in ("DEM/packing.data", "DEM/platen.stl"):
-        p = os.path.join(target, generated)
-        if os.path.exists(p):
-            os.remove(p)
+            shutil.copytree(os.path.join(source, sub), os.path.join(target, sub),
+                            ignore=generated if sub == "DEM" else None)
     copy_common(target)
     return target
 

@@ -349,7 +349,7 @@ def bad_input(work, bin_dir):
            ["breakageRecord.h5", "not a readable saved stage"])
     checkpoint = os.path.join(os.path.dirname(keel_file(work)), "settling.checkpoint.h5")
     expect("checkpointAsKeel", lambda p: iceCases.set_entry(p, "keel.settledRubble", f'"{checkpoint}"'),
-           ["settling.checkpoint.h5", "settling checkpoint", "settled rubble is needed"])
+           ["settling.checkpoint.h5", "settling checkpoint", "a keel must be a settled or a compacted rubble"])
     expect("keelOfAnotherBox", lambda p: iceCases.set_entry(p, "box.length", 1.0),
            ["ridgeProperties", "'box'", "another box"])
 

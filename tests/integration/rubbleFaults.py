@@ -7,6 +7,7 @@ position, velocity and spin and every bond's history in DEM/settled.h5, and the 
 usage: rubbleFaults.py CASE WORKDIR APP"""
 import os
 import random
+import shutil
 import sys
 
 import h5py
@@ -26,8 +27,9 @@ def check(ok, what):
 
 
 def small(name):
-    path = iceCases.small_rubble_case(case, os.path.join(work, name), 1.0, 0.6, 0.2, 3, 30,
-                                      {"settling.checkpointInterval": 0.25})
+    shutil.rmtree(os.path.join(work, name), ignore_errors=True)   # no stage of an earlier run
+    path = iceCases.small_rubble_case(case, os.path.join(work, name), 1.0, 0.6, 0.2, 6, 30,
+                                      {"settling.checkpointInterval": 0.25, "settling.minTime": 6})
     iceCases.uncompacted(os.path.join(path, "constant", "rubbleProperties"), 0.6)    # settling only
     return path
 
@@ -40,7 +42,7 @@ checkpoint = os.path.join(killed, "DEM", "settling.checkpoint.h5")
 pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
 delays = []
 for attempt in range(3):
-    delays.append(pick.uniform(0.0, 0.2))
+    delays.append(pick.uniform(0.0, 0.01))    # the small settling runs at tens of thousands of steps a second
     iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "settle"] + (["-resume"] if attempt else []),
                                        checkpoint, f"log.settle.{attempt}", delays[-1])
 settled = os.path.join(killed, "DEM", "settled.h5")
