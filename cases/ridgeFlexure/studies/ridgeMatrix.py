@@ -22,8 +22,10 @@ Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--r
 import argparse
 import concurrent.futures
 import csv
+import hashlib
 import json
 import os
+import shutil
 import subprocess
 import sys
 import threading
@@ -70,12 +72,38 @@ def run_dir(run, resolution):
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
 
+def made_from(run, resolution):
+    """What a run folder is made from: the run's row, and the content of the case's inputs and of
+    its keel. A folder made from anything else is stale: made again, never reused or skipped."""
+    digest = hashlib.sha256(json.dumps([run, resolution], sort_keys=True).encode())
+    files = [iceCases.keel_file(keel_case(run, resolution))]
+    for sub in ("constant", "system"):
+        for folder, _, names in sorted(os.walk(os.path.join(CASE, sub))):
+            files += [os.path.join(folder, n) for n in sorted(names)]
+    files += [os.path.join(CASE, "DEM", "in.ridge")]
+    files += sorted(os.path.join(CASE, "..", "common", n) for n in os.listdir(os.path.join(CASE, "..", "common")))
+    for path in files:
+        if os.path.isfile(path):
+            digest.update(path.encode())
+            with open(path, "rb") as f:
+                digest.update(f.read())
+    return digest.hexdigest()[:16]
+
+
 def prepare(run, resolution, target=None):
-    """The run's case folder (default run_dir), made from the ridge case unless it exists."""
+    """The run's case folder (default run_dir), made from the ridge case unless it exists and was
+    made from the same inputs (made_from, recorded in its madeFrom file)."""
     target = target or run_dir(run, resolution)
+    stamp = os.path.join(target, "madeFrom")
+    fingerprint = made_from(run, resolution)
     if os.path.exists(os.path.join(target, "constant", "ridgeProperties")):
-        return target
+        if os.path.exists(stamp) and open(stamp).read().strip() == fingerprint:
+            return target
+        print("ridgeMatrix: %s was made from other inputs (the case's dictionaries or the keel changed): "
+              "run again" % target, flush=True)
+        shutil.rmtree(target)
     iceCases.copy_case(CASE, target)
+    iceCases.write_atomically(stamp, fingerprint + "\n")
     props = os.path.join(target, "constant", "ridgeProperties")
     keel = iceCases.keel_file(keel_case(run, resolution))
     iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(keel, target))
