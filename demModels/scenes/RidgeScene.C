@@ -150,7 +150,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     control.checkKeys
     ({
         "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval"
+        "sampleInterval", "writeInterval", "checkpointInterval", "vtkFormat"
     });
     s.loading.readControl(control);
     return s;
@@ -681,7 +681,7 @@ Provenance RidgeScene::loadingInputs(const Provenance& ridge) const
                     {"referenceFlexuralStrength"});
     p.addDictionaryFile("constant/couplingProperties", context_.path("constant/couplingProperties"));
     p.addDictionaryFile(settings_.controlFile, context_.path(settings_.controlFile),
-                        {"writeInterval", "checkpointInterval"});
+                        {"writeInterval", "checkpointInterval", "vtkFormat"});
     return p;
 }
 
