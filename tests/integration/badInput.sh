@@ -20,7 +20,7 @@ check unsafeTimeStep    constant/iceProperties  's/factor .*;/factor 1.5;/'    "
 check badParticleCount  constant/beamProperties 's/particles .*;/particles abc;/' "packing.particles"
 check tooFewBondSlots   constant/iceProperties  's/maxBondsPerParticle .*;/maxBondsPerParticle 2;/' "maxBondsPerParticle"
 check unreachablePacking constant/beamProperties 's/solidFraction .*;/solidFraction 0.73;/' "packing.solidFraction"
-check unknownVtkFormat  system/controlDict      's/vtkFormat .*;/vtkFormat legacy;/' "system/controlDict: entry 'vtkFormat': line 21: unknown value 'legacy'; allowed: ascii binary"
+check unknownVtkFormat  system/controlDict      's/vtkFormat  *binary;/vtkFormat legacy;/' "system/controlDict: entry 'vtkFormat': line 21: unknown value 'legacy'; allowed: ascii binary"
 check missingFile       constant/beamProperties delete                         "beamProperties"
 check missingScript     DEM/in.levelIceBeam     delete                         "in.levelIceBeam"
 
