@@ -12,9 +12,10 @@ namespace iceDEM
 namespace
 {
 
-constexpr std::uint64_t magic = 0x69636544454d3033ULL;   // "iceDEM03"
+constexpr std::uint64_t magic = 0x69636544454d3034ULL;   // "iceDEM04"
 constexpr std::uint64_t magicOfVersion1 = 0x69636544454d3031ULL;   // LoadingState without liggghtsStepAtStart
 constexpr std::uint64_t magicOfVersion2 = 0x69636544454d3032ULL;   // without the inputs' provenance
+constexpr std::uint64_t magicOfVersion3 = 0x69636544454d3033ULL;   // break events without their separation
 
 class Writer
 {
@@ -143,6 +144,7 @@ void Checkpoint::write(const std::string& path) const
         {
             w.put(e.time);
             w.put(e.position);
+            w.put(e.separation);
             w.put(static_cast<std::int64_t>(e.tagA));
             w.put(static_cast<std::int64_t>(e.tagB));
             w.put(static_cast<std::int32_t>(e.family));
@@ -170,7 +172,7 @@ Checkpoint Checkpoint::read(const std::string& path)
     }
     Reader r(in, path);
     const auto start = r.get<std::uint64_t>();
-    if (start == magicOfVersion1 || start == magicOfVersion2)
+    if (start == magicOfVersion1 || start == magicOfVersion2 || start == magicOfVersion3)
     {
         throw std::runtime_error(path + ": written by an older version of the program; delete the "
             "checkpoint folder and start again");
@@ -195,6 +197,7 @@ Checkpoint Checkpoint::read(const std::string& path)
         BreakEvent e;
         e.time = r.get<double>();
         e.position = r.getVec3();
+        e.separation = r.getVec3();
         e.tagA = r.get<std::int64_t>();
         e.tagB = r.get<std::int64_t>();
         e.family = static_cast<BondFamily>(r.get<std::int32_t>());

@@ -766,7 +766,9 @@ void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& resu
         if (a < nlocal)
         {
             const Vec3 centre(result.centre[0][l], result.centre[1][l], result.centre[2][l]);
-            breaks_.push_back({lmp_.time(), centre, state.tagA, state.tagB, state.family, broke});
+            const double* const* x = lmp_.engine().atom->x;
+            const Vec3 separation(x[b][0] - x[a][0], x[b][1] - x[a][1], x[b][2] - x[a][2]);
+            breaks_.push_back({lmp_.time(), centre, separation, state.tagA, state.tagB, state.family, broke});
             removeFromTable(a, state.tagB);
         }
         if (b < nlocal)

@@ -167,7 +167,7 @@ GatheredState gatherState(const LiggghtsInstance& lmp, const IceBondForces& bond
 
 std::vector<BreakEvent> gatherBreakEvents(MPI_Comm comm, const std::vector<BreakEvent>& local)
 {
-    constexpr int perEvent = 8;
+    constexpr int perEvent = 11;
     std::vector<double> data;
     for (const BreakEvent& e : local)
     {
@@ -176,6 +176,7 @@ std::vector<BreakEvent> gatherBreakEvents(MPI_Comm comm, const std::vector<Break
             data.end(),
             {
                 e.time, e.position.x(), e.position.y(), e.position.z(),
+                e.separation.x(), e.separation.y(), e.separation.z(),
                 double(e.tagA), double(e.tagB),
                 double(static_cast<int>(e.family)), double(static_cast<int>(e.mode))
             }
@@ -188,10 +189,11 @@ std::vector<BreakEvent> gatherBreakEvents(MPI_Comm comm, const std::vector<Break
         BreakEvent e;
         e.time = all[k];
         e.position = Vec3(all[k + 1], all[k + 2], all[k + 3]);
-        e.tagA = static_cast<long>(all[k + 4]);
-        e.tagB = static_cast<long>(all[k + 5]);
-        e.family = static_cast<BondFamily>(static_cast<int>(all[k + 6]));
-        e.mode = static_cast<BreakMode>(static_cast<int>(all[k + 7]));
+        e.separation = Vec3(all[k + 4], all[k + 5], all[k + 6]);
+        e.tagA = static_cast<long>(all[k + 7]);
+        e.tagB = static_cast<long>(all[k + 8]);
+        e.family = static_cast<BondFamily>(static_cast<int>(all[k + 9]));
+        e.mode = static_cast<BreakMode>(static_cast<int>(all[k + 10]));
         events.push_back(e);
     }
     return events;

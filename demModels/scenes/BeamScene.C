@@ -130,7 +130,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
     });
     s.loading.readControl(control);
     s.loading.readInertiaScaling(props);
@@ -301,7 +301,7 @@ Provenance BeamScene::inputs() const
     p.add("application", "iceBeamDEM");
     p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
     p.addDictionaryFile("constant/beamProperties", context_.path("constant/beamProperties"), {"fieldReference"});
-    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval"});
+    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval", "vtkFormat"});
     p.addFileContent("DEM/in.levelIceBeam", context_.path("DEM/in.levelIceBeam"));
     p.add("command line -particles", options_.particles > 0 ? std::to_string(options_.particles) : "not given");
     p.add("command line -platenSpeed", options_.platenSpeed > 0.0 ? shortestNumber(options_.platenSpeed) : "not given");
@@ -454,6 +454,8 @@ void BeamScene::writeSummary(double wallSeconds) const
     j["inputs_fingerprint"] = loading_->inputs().fingerprint();
     j["wall_s"] = wallSeconds;
     j["loop_wall_s"] = loopSeconds;
+    j["frames"] = state.frame;
+    j["frames_wall_s"] = loading_->frameSeconds();
     j["particle_steps_per_s"] = loopSteps * body_.particles.size() / loopSeconds;
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 

@@ -78,11 +78,13 @@ FloatingBlockSettings FloatingBlockSettings::read(const std::string& caseDir)
     const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
     control.checkKeys
     ({
-        "application", "endTime", "sampleInterval", "writeInterval", "restKineticEnergy", "restDuration"
+        "application", "endTime", "sampleInterval", "writeInterval", "restKineticEnergy", "restDuration",
+        "vtkFormat"
     });
     s.endTime = positive(control, "endTime");
     s.sampleInterval = positive(control, "sampleInterval");
     s.writeInterval = positive(control, "writeInterval");
+    s.vtkFormat = readVtkFormat(control);
     s.restKineticEnergy = positive(control, "restKineticEnergy");
     s.restDuration = positive(control, "restDuration");
     if (s.sampleInterval > s.writeInterval)
@@ -322,7 +324,7 @@ void FloatingBlockScene::writeFrame(int frame)
     }
     std::ostringstream name;
     name << "particles_" << std::setw(5) << std::setfill('0') << frame << ".vtp";
-    writeParticlesVtp(context_.path("VTK/" + name.str()), state.particles);
+    writeParticlesVtp(context_.path("VTK/" + name.str()), state.particles, settings_.vtkFormat);
     if (!particlesPvd_)
     {
         particlesPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/particles.pvd"));

@@ -1,4 +1,5 @@
 #include "PlatenLoading.H"
+#include "BondNetworkFrame.H"
 #include "Format.H"
 
 #include "AtomicFile.H"
@@ -72,6 +73,7 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     maxKineticToWork = readMaxKineticToWorkRatio(control);
     sampleInterval = control.getPositiveScalarOrDefault("sampleInterval", 2e-4);
     writeInterval = control.getPositiveScalarOrDefault("writeInterval", 0.01);
+    vtkFormat = readVtkFormat(control);
     checkpointInterval = control.getPositiveScalarOrDefault("checkpointInterval", 0.02);
     if (sampleInterval > writeInterval)
     {
@@ -587,43 +589,29 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, con
 
 void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
 {
+    const auto start = std::chrono::steady_clock::now();
     const GatheredState gathered = gatherState(lmp, bonds, fixedType_);
     const int frame = state_.frame++;
     if (context_.rank() != 0)
     {
         return;
     }
-    BondFrame network;
-    auto addLink = [&](long a, long b, int family, int stateCode, int mode, double time)
-    {
-        const auto ia = gathered.indexOfTag.find(a);
-        const auto ib = gathered.indexOfTag.find(b);
-        if (ia == gathered.indexOfTag.end() || ib == gathered.indexOfTag.end())
-        {
-            return;
-        }
-        network.endA.push_back(gathered.particles.position[ia->second]);
-        network.endB.push_back(gathered.particles.position[ib->second]);
-        network.family.push_back(family);
-        network.state.push_back(stateCode);
-        network.mode.push_back(mode);
-        network.time.push_back(time);
-    };
+    BondNetworkFrame network(gathered.particles, gathered.indexOfTag);
     for (const BondLink& l : gathered.links)
     {
-        addLink(l.tagA, l.tagB, l.family, 0, 0, -1.0);
+        network.addIntact(l.tagA, l.tagB, l.family);
     }
     for (const BreakEvent& e : breakage_.events())
     {
-        addLink(e.tagA, e.tagB, static_cast<int>(e.family), 1, static_cast<int>(e.mode), e.time);
+        network.addBroken(e);
     }
 
     std::ostringstream name;
     name << std::setw(5) << std::setfill('0') << frame;
     const std::string particlesFile = "particles_" + name.str() + ".vtp";
     const std::string bondsFile = "bonds_" + name.str() + ".vtp";
-    writeParticlesVtp(context_.path("VTK/" + particlesFile), gathered.particles);
-    writeBondsVtp(context_.path("VTK/" + bondsFile), network);
+    writeParticlesVtp(context_.path("VTK/" + particlesFile), gathered.particles, control_.vtkFormat);
+    writeBondsVtp(context_.path("VTK/" + bondsFile), network.frame(), control_.vtkFormat);
     if (!particlesPvd_)
     {
         particlesPvd_ = std::make_unique<PvdCollection>(context_.path("VTK/particles.pvd"));
@@ -633,6 +621,7 @@ void PlatenLoading::writeFrame(LiggghtsInstance& lmp, IceBondForces& bonds)
     bondsPvd_->add(time(lmp), bondsFile);
     breakage_.writeHdf5(context_.path("postProcessing/breakage.h5"));
     curve_.write(context_.path("postProcessing/platenForce.csv"));
+    frameSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 

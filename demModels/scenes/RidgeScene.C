@@ -187,7 +187,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     control.checkKeys
     ({
         "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
     });
     s.loading.readControl(control);
     return s;
@@ -794,7 +794,7 @@ Provenance RidgeScene::loadingInputs(const Provenance& ridge) const
     p.addDictionary("constant/ridgeProperties", ridgeProperties.subDict("ends"));
     p.addDictionaryFile("constant/couplingProperties", context_.path("constant/couplingProperties"));
     p.addDictionaryFile(settings_.controlFile, context_.path(settings_.controlFile),
-                        {"writeInterval", "checkpointInterval"});
+                        {"writeInterval", "checkpointInterval", "vtkFormat"});
     return p;
 }
 

@@ -180,6 +180,14 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
     e.checkKeys({"fixedLength"});
     s.fixedEndLength = e.getScalarOrDefault("fixedLength", s.fixedEndLength);
     if (!(s.fixedEndLength >= 0.0 && 2*s.fixedEndLength < s.boxLength)) e.fail("fixedLength", "must lie in [0, length/2)");
+
+    // The case's output entry, in the controlDict of the case that loads the rubble later
+    // (the other entries there are that application's).
+    const std::string control = s.caseDir + "/system/controlDict";
+    if (std::filesystem::exists(control))
+    {
+        s.vtkFormat = readVtkFormat(Dictionary::readFile(control));
+    }
     return s;
 }
 
@@ -904,8 +912,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
     {
         ++bondCount[b.tagA - 1];
         ++bondCount[b.tagB - 1];
-        network.endA.push_back(state.particles[b.tagA - 1].position);
-        network.endB.push_back(state.particles[b.tagB - 1].position);
+        network.ends.push_back({b.tagA - 1, b.tagB - 1});
         network.family.push_back(static_cast<int>(b.family));
     }
     for (std::size_t k = 0; k < state.particles.size(); ++k)
@@ -919,8 +926,9 @@ void RubbleScene::writeSummary(double wallSeconds) const
         particles.fixed.push_back(p.type == fixedType);
         particles.block.push_back(p.block);
     }
-    writeParticlesVtp(context_.path("VTK/rubble_particles.vtp"), particles);
-    writeBondsVtp(context_.path("VTK/rubble_bonds.vtp"), network);
+    network.points = particles.position;
+    writeParticlesVtp(context_.path("VTK/rubble_particles.vtp"), particles, settings_.vtkFormat);
+    writeBondsVtp(context_.path("VTK/rubble_bonds.vtp"), network, settings_.vtkFormat);
 
     long iceBonds = 0;
     for (const BondState& b : state.bonds) iceBonds += b.family == BondFamily::ice;

@@ -168,7 +168,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     control.checkKeys
     ({
         "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio"
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
     });
     s.loading.readControl(control);
     s.loading.readInertiaScaling(props);
@@ -418,7 +418,7 @@ Provenance ThreePointBendingScene::inputs() const
     p.add("application", application);
     p.addDictionaryFile(icePropertiesFile_, context_.path(icePropertiesFile_));
     p.addDictionaryFile("constant/bendingProperties", context_.path("constant/bendingProperties"), {"targetStrength"});
-    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval"});
+    p.addDictionaryFile("system/controlDict", context_.path("system/controlDict"), {"writeInterval", "checkpointInterval", "vtkFormat"});
     p.addFileContent("DEM/in.threePointBending", context_.path("DEM/in.threePointBending"));
     p.add("command line -thickness", options_.thickness > 0.0 ? shortestNumber(options_.thickness) : "not given");
     p.add("command line -platenSpeed", options_.platenSpeed > 0.0 ? shortestNumber(options_.platenSpeed) : "not given");

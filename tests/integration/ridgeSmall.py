@@ -34,7 +34,6 @@ import math
 import os
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
 
 import h5py
 import numpy as np
@@ -43,6 +42,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..", "..")
 sys.path.insert(0, os.path.join(TOP, "postProcessing"))
 import iceCases  # noqa: E402
+import vtpFile  # noqa: E402
 
 CASES = os.path.join(TOP, "cases")
 LENGTH, WIDTH = 1.6, 0.4            # m, the small keel's box (blocks up to 0.47 m long stay clear of
@@ -88,17 +88,13 @@ def ridge_case(template, path, work, controls=(), entries=()):
 
 
 def vtp_particles(path):
-    """Positions and radii of a particles_*.vtp (ASCII, as VtkWriter writes it)."""
-    piece = ET.parse(path).getroot().find("PolyData/Piece")
-    points = np.array(piece.find("Points/DataArray").text.split(), float).reshape(-1, 3)
-    radius = next(a for a in piece.iter("DataArray") if a.get("Name") == "radius")
-    return points, np.array(radius.text.split(), float)
+    """Positions and radii of a particles_*.vtp."""
+    piece = vtpFile.read_vtp(path)
+    return piece.points, piece.point_data["radius"]
 
 
 def pvd_frames(path):
-    root = ET.parse(path).getroot()
-    return [(float(d.get("timestep")), os.path.join(os.path.dirname(path), d.get("file")))
-            for d in root.iter("DataSet")]
+    return vtpFile.read_pvd(path)
 
 
 def submerged_volume(z, r, level):
@@ -189,7 +185,8 @@ def check_buoyancy_share(case, level):
     (k0, v0), (k1, v1) = rows[0], rows[-1]
     python_share = RHO_W * G * (v1 - v0)
     program_share = c["buoyancyShare"][k1] - c["buoyancyShare"][k0]
-    # Frames print coordinates to 10 significant digits (5e-11 m at z ~ 0.5 m); the cap volume
+    # ascii frames print coordinates to 10 significant digits (5e-11 m at z ~ 0.5 m; binary
+    # ones are exact, and the same bound covers them); the cap volume
     # changes by pi r^2 dz per sphere, so round-off alone is below n pi r^2 5e-11 m3.
     n, r = len(vtp_particles(frames[0][1])[1]), 0.0275
     rounding = RHO_W * G * n * math.pi * r * r * 5e-11

@@ -27,6 +27,7 @@ BreakEvent event
     BreakEvent e;
     e.time = time;
     e.position = position;
+    e.separation = Vec3(0.02, -time, 1e-3*tagA);
     e.tagA = tagA;
     e.tagB = tagB;
     e.family = family;
@@ -155,6 +156,7 @@ TEST_F(BreakageRecordFile, WriteThenReadGivesSortedEventsExactly)
     }
     EXPECT_EQ(read.events()[1].tagA, 5000000000L);
     EXPECT_EQ(read.events()[1].position, Vec3(-1e-9, 1e9, 0.0));
+    EXPECT_EQ(read.events()[1].separation, Vec3(0.02, -1.0, 5e6));
 
     // Only the final file is left in the folder.
     std::size_t nFiles = 0;
@@ -181,7 +183,8 @@ TEST_F(BreakageRecordFile, LayoutAndAttributes)
     const std::pair<const char*, hid_t> datasets[] =
     {
         {"time", H5T_IEEE_F64LE}, {"x", H5T_IEEE_F64LE}, {"y", H5T_IEEE_F64LE},
-        {"z", H5T_IEEE_F64LE}, {"tagA", H5T_STD_I64LE}, {"tagB", H5T_STD_I64LE},
+        {"z", H5T_IEEE_F64LE}, {"dx", H5T_IEEE_F64LE}, {"dy", H5T_IEEE_F64LE},
+        {"dz", H5T_IEEE_F64LE}, {"tagA", H5T_STD_I64LE}, {"tagB", H5T_STD_I64LE},
         {"family", H5T_STD_I32LE}, {"mode", H5T_STD_I32LE}
     };
     for (const auto& [name, expectedType] : datasets)

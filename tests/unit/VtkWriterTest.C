@@ -1,8 +1,13 @@
+#include "InputError.H"
 #include "VtkWriter.H"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -171,7 +176,7 @@ private:
 
 std::string contents(const fs::path& file)
 {
-    std::ifstream in(file);
+    std::ifstream in(file, std::ios::binary);
     EXPECT_TRUE(in.good()) << file;
     std::stringstream buffer;
     buffer << in.rdbuf();
@@ -186,6 +191,97 @@ XmlElement readXml(const fs::path& file)
 std::size_t count(const XmlElement& array)
 {
     return array.values().size();
+}
+
+//- A binary .vtp: its XML (read with XmlReader) and the raw data appended after it.
+struct BinaryVtp
+{
+    XmlElement root;
+    std::string appended;
+
+    explicit BinaryVtp(const std::string& file)
+    {
+        const std::string open = "  <AppendedData encoding=\"raw\">\n   _";
+        const std::string close = "\n  </AppendedData>\n</VTKFile>\n";
+        const std::size_t start = file.find(open);
+        if
+        (
+            start == std::string::npos || file.size() < start + open.size() + close.size()
+         || file.compare(file.size() - close.size(), close.size(), close) != 0
+        )
+        {
+            throw std::runtime_error("no appended raw data");
+        }
+        root = XmlReader(file.substr(0, start) + "</VTKFile>\n").document();
+        appended = file.substr(start + open.size(), file.size() - close.size() - start - open.size());
+    }
+
+    const XmlElement& piece() const { return root.child("PolyData").child("Piece"); }
+
+    std::uint64_t word(std::size_t at) const
+    {
+        std::uint64_t w = 0;
+        EXPECT_LE(at + sizeof w, appended.size());
+        std::memcpy(&w, appended.data() + at, sizeof w);
+        return w;
+    }
+
+    //- One array's bytes: VTK's compressed blocks undone with zlib's uncompress.
+    std::string bytes(const XmlElement& array) const
+    {
+        EXPECT_EQ(array.attributes.at("format"), "appended");
+        const std::size_t offset = std::stoul(array.attributes.at("offset"));
+        const std::uint64_t blocks = word(offset);
+        const std::uint64_t blockSize = word(offset + 8);
+        const std::uint64_t lastSize = word(offset + 16);
+        std::size_t at = offset + 24 + 8*blocks;
+        std::string decoded;
+        for (std::uint64_t k = 0; k < blocks; ++k)
+        {
+            const std::uint64_t compressed = word(offset + 24 + 8*k);
+            const uLongf expected = (k + 1 == blocks && lastSize != 0) ? lastSize : blockSize;
+            uLongf size = expected;
+            std::string block(size, '\0');
+            EXPECT_LE(at + compressed, appended.size());
+            EXPECT_EQ
+            (
+                uncompress(reinterpret_cast<Bytef*>(block.data()), &size,
+                           reinterpret_cast<const Bytef*>(appended.data() + at), compressed),
+                Z_OK
+            );
+            EXPECT_EQ(size, expected);
+            decoded += block;
+            at += compressed;
+        }
+        return decoded;
+    }
+};
+
+template<class T>
+std::string bytesOf(const std::vector<T>& values)
+{
+    return std::string(reinterpret_cast<const char*>(values.data()), values.size()*sizeof(T));
+}
+
+//- The attributes of every DataArray but format and offset, in file order.
+std::vector<std::map<std::string, std::string>> arrayHeads(const XmlElement& e)
+{
+    std::vector<std::map<std::string, std::string>> heads;
+    for (const XmlElement& c : e.children)
+    {
+        if (c.name == "DataArray")
+        {
+            std::map<std::string, std::string> head = c.attributes;
+            head.erase("format");
+            head.erase("offset");
+            heads.push_back(head);
+        }
+        for (auto& h : arrayHeads(c))
+        {
+            heads.push_back(h);
+        }
+    }
+    return heads;
 }
 
 ParticleFrame threeParticles()
@@ -204,8 +300,8 @@ ParticleFrame threeParticles()
 BondFrame twoBonds()
 {
     BondFrame b;
-    b.endA = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
-    b.endB = {Vec3(0.1, 0, 0), Vec3(1, 1.1, 1)};
+    b.points = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(1, 1, 1), Vec3(1, 1.1, 1)};
+    b.ends = {{0, 1}, {2, 3}};
     b.family = {0, 1};
     b.state = {0, 1};
     b.mode = {0, 2};
@@ -239,7 +335,7 @@ protected:
 TEST_F(VtkFiles, ParticlesArePolyDataVertices)
 {
     const ParticleFrame frame = threeParticles();
-    writeParticlesVtp((dir_/"VTK"/"particles_0.vtp").string(), frame);
+    writeParticlesVtp((dir_/"VTK"/"particles_0.vtp").string(), frame, VtkFormat::ascii);
     const XmlElement root = readXml(dir_/"VTK"/"particles_0.vtp");
 
     EXPECT_EQ(root.name, "VTKFile");
@@ -276,7 +372,7 @@ TEST_F(VtkFiles, ParticlesArePolyDataVertices)
 
 TEST_F(VtkFiles, BondsArePolyDataLinesWithCellData)
 {
-    writeBondsVtp((dir_/"bonds_0.vtp").string(), twoBonds());
+    writeBondsVtp((dir_/"bonds_0.vtp").string(), twoBonds(), VtkFormat::ascii);
     const XmlElement root = readXml(dir_/"bonds_0.vtp");
 
     const XmlElement& piece = root.child("PolyData").child("Piece");
@@ -300,8 +396,8 @@ TEST_F(VtkFiles, BondsArePolyDataLinesWithCellData)
 
 TEST_F(VtkFiles, EmptyFramesAreWellFormed)
 {
-    writeParticlesVtp((dir_/"p.vtp").string(), ParticleFrame());
-    writeBondsVtp((dir_/"b.vtp").string(), BondFrame());
+    writeParticlesVtp((dir_/"p.vtp").string(), ParticleFrame(), VtkFormat::ascii);
+    writeBondsVtp((dir_/"b.vtp").string(), BondFrame(), VtkFormat::ascii);
     for (const char* file : {"p.vtp", "b.vtp"})
     {
         const XmlElement piece = readXml(dir_/file).child("PolyData").child("Piece");
@@ -317,20 +413,156 @@ TEST_F(VtkFiles, OptionalArraysLeftOutWrongLengthsRejected)
     frame.position = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
     frame.radius = {0.1, 0.1};
     const XmlElement pointData =
-        XmlReader(particlesVtpText(frame)).document().child("PolyData").child("Piece")
+        XmlReader(particlesVtp(frame, VtkFormat::ascii)).document().child("PolyData").child("Piece")
        .child("PointData");
     EXPECT_EQ(pointData.children.size(), 1u);
     EXPECT_EQ(count(pointData.array("radius")), 2u);
 
     frame.tag = {1};
-    EXPECT_THROW(particlesVtpText(frame), std::invalid_argument);
+    EXPECT_THROW(particlesVtp(frame, VtkFormat::ascii), std::invalid_argument);
 
     BondFrame bonds = twoBonds();
-    bonds.endB.pop_back();
-    EXPECT_THROW(bondsVtpText(bonds), std::invalid_argument);
+    bonds.ends[1][1] = 4;
+    EXPECT_THROW(bondsVtp(bonds, VtkFormat::binary), std::invalid_argument);
+    bonds.ends[1][1] = -1;
+    EXPECT_THROW(bondsVtp(bonds, VtkFormat::ascii), std::invalid_argument);
     bonds = twoBonds();
     bonds.time = {1.0};
-    EXPECT_THROW(bondsVtpText(bonds), std::invalid_argument);
+    EXPECT_THROW(bondsVtp(bonds, VtkFormat::binary), std::invalid_argument);
+}
+
+
+TEST(VtkAscii, ByteIdenticalToTheFilesBeforeBinary)
+{
+    const fs::path before = fs::path(ICEDEM_SOURCE_DIR)/"tests"/"unit"/"data"/"vtkAscii";
+    EXPECT_EQ(particlesVtp(threeParticles(), VtkFormat::ascii), contents(before/"particles.vtp"));
+    EXPECT_EQ(bondsVtp(twoBonds(), VtkFormat::ascii), contents(before/"bonds.vtp"));
+    EXPECT_EQ(particlesVtp(ParticleFrame(), VtkFormat::ascii), contents(before/"emptyParticles.vtp"));
+    EXPECT_EQ(bondsVtp(BondFrame(), VtkFormat::ascii), contents(before/"emptyBonds.vtp"));
+}
+
+
+TEST_F(VtkFiles, BinaryParticlesDecodeToTheirArrays)
+{
+    ParticleFrame frame = threeParticles();
+    frame.block = {-1, 4, 4};
+    writeParticlesVtp((dir_/"p.vtp").string(), frame, VtkFormat::binary);
+    const BinaryVtp file(contents(dir_/"p.vtp"));
+
+    EXPECT_EQ(file.root.attributes.at("compressor"), "vtkZLibDataCompressor");
+    EXPECT_EQ(file.root.attributes.at("header_type"), "UInt64");
+    EXPECT_EQ(file.root.attributes.at("byte_order"), "LittleEndian");
+    // The same piece, arrays, types and components as ascii.
+    const XmlElement ascii = XmlReader(particlesVtp(frame, VtkFormat::ascii)).document();
+    EXPECT_EQ(file.piece().attributes, ascii.child("PolyData").child("Piece").attributes);
+    EXPECT_EQ(arrayHeads(file.root), arrayHeads(ascii));
+    EXPECT_EQ(file.piece().child("PointData").attributes,
+              ascii.child("PolyData").child("Piece").child("PointData").attributes);
+
+    const XmlElement& pointData = file.piece().child("PointData");
+    EXPECT_EQ(file.bytes(pointData.array("radius")), bytesOf(frame.radius));
+    EXPECT_EQ(file.bytes(pointData.array("velocity")), bytesOf(frame.velocity));
+    EXPECT_EQ(file.bytes(pointData.array("force")), bytesOf(frame.force));
+    EXPECT_EQ(file.bytes(pointData.array("tag")), bytesOf(frame.tag));
+    EXPECT_EQ(file.bytes(pointData.array("bondCount")), bytesOf(frame.bondCount));
+    EXPECT_EQ(file.bytes(pointData.array("fixed")), bytesOf(frame.fixed));
+    EXPECT_EQ(file.bytes(pointData.array("block")), bytesOf(frame.block));
+    EXPECT_EQ(file.bytes(file.piece().child("Points").child("DataArray")), bytesOf(frame.position));
+    const XmlElement& verts = file.piece().child("Verts");
+    EXPECT_EQ(file.bytes(verts.array("connectivity")), bytesOf(std::vector<long>{0, 1, 2}));
+    EXPECT_EQ(file.bytes(verts.array("offsets")), bytesOf(std::vector<long>{1, 2, 3}));
+}
+
+
+TEST_F(VtkFiles, BinaryBondsWriteSharedPointsOnce)
+{
+    BondFrame frame;
+    frame.points = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.05, 0.08, 0), Vec3(2, 2, 2), Vec3(2.1, 2, 2)};
+    frame.ends = {{0, 1}, {1, 2}, {2, 0}, {3, 4}};
+    frame.family = {0, 0, 1, 0};
+    frame.state = {0, 0, 0, 1};
+    frame.mode = {0, 0, 0, 2};
+    frame.time = {-1, -1, -1, 0.25};
+    writeBondsVtp((dir_/"b.vtp").string(), frame, VtkFormat::binary);
+    const BinaryVtp file(contents(dir_/"b.vtp"));
+
+    EXPECT_EQ(file.piece().attributes.at("NumberOfPoints"), "5");
+    EXPECT_EQ(file.piece().attributes.at("NumberOfLines"), "4");
+    const XmlElement ascii = XmlReader(bondsVtp(frame, VtkFormat::ascii)).document();
+    EXPECT_EQ(ascii.child("PolyData").child("Piece").attributes.at("NumberOfPoints"), "8");
+    EXPECT_EQ(arrayHeads(file.root), arrayHeads(ascii));
+
+    const XmlElement& cellData = file.piece().child("CellData");
+    EXPECT_EQ(file.bytes(cellData.array("family")), bytesOf(frame.family));
+    EXPECT_EQ(file.bytes(cellData.array("state")), bytesOf(frame.state));
+    EXPECT_EQ(file.bytes(cellData.array("mode")), bytesOf(frame.mode));
+    EXPECT_EQ(file.bytes(cellData.array("breakTime")), bytesOf(frame.time));
+    EXPECT_EQ(file.bytes(file.piece().child("Points").child("DataArray")), bytesOf(frame.points));
+    const XmlElement& lines = file.piece().child("Lines");
+    EXPECT_EQ(file.bytes(lines.array("connectivity")), bytesOf(std::vector<long>{0, 1, 1, 2, 2, 0, 3, 4}));
+    EXPECT_EQ(file.bytes(lines.array("offsets")), bytesOf(std::vector<long>{2, 4, 6, 8}));
+}
+
+
+TEST_F(VtkFiles, BinaryArraysSpanBlocksAndEmptyFramesAreWellFormed)
+{
+    // 5000 points: 120,000 bytes, three full blocks of 32,768 and one of 21,696;
+    // 4096 radii: 32,768 bytes, one full block (last size 0).
+    ParticleFrame frame;
+    for (int i = 0; i < 5000; ++i)
+    {
+        frame.position.push_back(Vec3(std::sin(i), std::cos(0.3*i), 1e-3*i));
+    }
+    const std::string points = particlesVtp(frame, VtkFormat::binary);
+    const BinaryVtp file(points);
+    const XmlElement& pointsArray = file.piece().child("Points").child("DataArray");
+    const std::size_t offset = std::stoul(pointsArray.attributes.at("offset"));
+    EXPECT_EQ(file.word(offset), 4u);
+    EXPECT_EQ(file.word(offset + 8), 32768u);
+    EXPECT_EQ(file.word(offset + 16), 120000u - 3*32768u);
+    EXPECT_EQ(file.bytes(pointsArray), bytesOf(frame.position));
+
+    ParticleFrame exact;
+    exact.position.assign(4096, Vec3(0.5, 0.25, 0.125));
+    exact.radius.assign(4096, 0.01);
+    const BinaryVtp exactFile(particlesVtp(exact, VtkFormat::binary));
+    const XmlElement& radius = exactFile.piece().child("PointData").array("radius");
+    const std::size_t at = std::stoul(radius.attributes.at("offset"));
+    EXPECT_EQ(exactFile.word(at), 1u);
+    EXPECT_EQ(exactFile.word(at + 16), 0u);
+    EXPECT_EQ(exactFile.bytes(radius), bytesOf(exact.radius));
+
+    for (const std::string& empty :
+         {particlesVtp(ParticleFrame(), VtkFormat::binary), bondsVtp(BondFrame(), VtkFormat::binary)})
+    {
+        const BinaryVtp emptyFile(empty);
+        EXPECT_EQ(emptyFile.piece().attributes.at("NumberOfPoints"), "0");
+        EXPECT_EQ(emptyFile.bytes(emptyFile.piece().child("Points").child("DataArray")), "");
+    }
+}
+
+
+TEST(VtkFormatEntry, BinaryByDefaultAsciiByNameUnknownRefused)
+{
+    EXPECT_EQ(readVtkFormat(Dictionary::parse("writeInterval 0.01;", "system/controlDict")),
+              VtkFormat::binary);
+    EXPECT_EQ(readVtkFormat(Dictionary::parse("vtkFormat ascii;", "system/controlDict")),
+              VtkFormat::ascii);
+    EXPECT_EQ(readVtkFormat(Dictionary::parse("vtkFormat binary;", "system/controlDict")),
+              VtkFormat::binary);
+    try
+    {
+        readVtkFormat(Dictionary::parse("\nvtkFormat legacy;\n", "system/controlDict"));
+        FAIL() << "vtkFormat legacy accepted";
+    }
+    catch (const InputError& e)
+    {
+        EXPECT_EQ(e.file(), "system/controlDict");
+        EXPECT_EQ(e.entry(), "vtkFormat");
+        const std::string what = e.what();
+        EXPECT_NE(what.find("line 2"), std::string::npos) << what;
+        EXPECT_NE(what.find("unknown value 'legacy'; allowed: ascii binary"), std::string::npos) << what;
+    }
 }
 
 

@@ -19,7 +19,7 @@ namespace
 constexpr const char* groupName = "breakage";
 constexpr const char* familyCodes = "0=ice,1=freeze";
 constexpr const char* modeCodes = "1=tension,2=shear,3=twist,4=bending";
-constexpr const char* units = "time:s,x:m,y:m,z:m";
+constexpr const char* units = "time:s,x:m,y:m,z:m,dx:m,dy:m,dz:m";
 
 bool validFamily(int code)
 {
@@ -64,7 +64,7 @@ void writeEvents
 )
 {
     const std::size_t n = events.size();
-    std::vector<double> time(n), x(n), y(n), z(n);
+    std::vector<double> time(n), x(n), y(n), z(n), dx(n), dy(n), dz(n);
     std::vector<std::int64_t> tagA(n), tagB(n);
     std::vector<std::int32_t> family(n), mode(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -74,6 +74,9 @@ void writeEvents
         x[i] = e.position.x();
         y[i] = e.position.y();
         z[i] = e.position.z();
+        dx[i] = e.separation.x();
+        dy[i] = e.separation.y();
+        dz[i] = e.separation.z();
         tagA[i] = e.tagA;
         tagB[i] = e.tagB;
         family[i] = static_cast<std::int32_t>(e.family);
@@ -89,6 +92,9 @@ void writeEvents
     writeDataset(g, "x", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, x.data(), n, path);
     writeDataset(g, "y", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, y.data(), n, path);
     writeDataset(g, "z", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, z.data(), n, path);
+    writeDataset(g, "dx", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dx.data(), n, path);
+    writeDataset(g, "dy", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dy.data(), n, path);
+    writeDataset(g, "dz", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dz.data(), n, path);
     writeDataset(g, "tagA", H5T_STD_I64LE, H5T_NATIVE_INT64, tagA.data(), n, path);
     writeDataset(g, "tagB", H5T_STD_I64LE, H5T_NATIVE_INT64, tagB.data(), n, path);
     writeDataset(g, "family", H5T_STD_I32LE, H5T_NATIVE_INT32, family.data(), n, path);
@@ -104,7 +110,8 @@ void writeEvents
 
 bool operator==(const BreakEvent& a, const BreakEvent& b)
 {
-    return a.time == b.time && a.position == b.position && a.tagA == b.tagA
+    return a.time == b.time && a.position == b.position && a.separation == b.separation
+        && a.tagA == b.tagA
         && a.tagB == b.tagB && a.family == b.family && a.mode == b.mode;
 }
 
@@ -204,13 +211,16 @@ BreakageRecord BreakageRecord::readHdf5(const std::string& path)
     const auto x = readDataset<double>(g, "x", H5T_NATIVE_DOUBLE, path);
     const auto y = readDataset<double>(g, "y", H5T_NATIVE_DOUBLE, path);
     const auto z = readDataset<double>(g, "z", H5T_NATIVE_DOUBLE, path);
+    const auto dx = readDataset<double>(g, "dx", H5T_NATIVE_DOUBLE, path);
+    const auto dy = readDataset<double>(g, "dy", H5T_NATIVE_DOUBLE, path);
+    const auto dz = readDataset<double>(g, "dz", H5T_NATIVE_DOUBLE, path);
     const auto tagA = readDataset<std::int64_t>(g, "tagA", H5T_NATIVE_INT64, path);
     const auto tagB = readDataset<std::int64_t>(g, "tagB", H5T_NATIVE_INT64, path);
     const auto family = readDataset<std::int32_t>(g, "family", H5T_NATIVE_INT32, path);
     const auto mode = readDataset<std::int32_t>(g, "mode", H5T_NATIVE_INT32, path);
 
     const std::size_t n = time.size();
-    for (std::size_t size : {x.size(), y.size(), z.size(), tagA.size(), tagB.size(),
+    for (std::size_t size : {x.size(), y.size(), z.size(), dx.size(), dy.size(), dz.size(), tagA.size(), tagB.size(),
                              family.size(), mode.size()})
     {
         if (size != n)
@@ -235,6 +245,7 @@ BreakageRecord BreakageRecord::readHdf5(const std::string& path)
         BreakEvent e;
         e.time = time[i];
         e.position = Vec3(x[i], y[i], z[i]);
+        e.separation = Vec3(dx[i], dy[i], dz[i]);
         e.tagA = tagA[i];
         e.tagB = tagB[i];
         e.family = static_cast<BondFamily>(family[i]);

@@ -1,6 +1,7 @@
 #include "VtkWriter.H"
 
 #include "AtomicFile.H"
+#include "VtkCompressedBlocks.H"
 
 #include <algorithm>
 #include <cmath>
@@ -100,14 +101,28 @@ void checkLength
 }
 
 
+//- One .vtp file's XML and, in binary, the arrays' bytes appended after it.
+struct VtpContents
+{
+    explicit VtpContents(VtkFormat f)
+    :
+        format(f)
+    {}
+
+    VtkFormat format;
+    std::string xml;
+    std::string appended;
+};
+
+
 //- Appends <DataArray> elements; empty arrays are left out.
 class ArrayWriter
 {
 public:
     //- keepEmpty: write empty arrays too (points and cell connectivity of an empty piece).
-    explicit ArrayWriter(std::string& text, bool keepEmpty = false)
+    explicit ArrayWriter(VtpContents& file, bool keepEmpty = false)
     :
-        text_(text),
+        file_(file),
         keepEmpty_(keepEmpty)
     {}
 
@@ -160,59 +175,101 @@ private:
         {
             return;
         }
-        text_ += "        <DataArray type=\"";
-        text_ += type;
-        text_ += "\" Name=\"";
-        text_ += name;
-        text_ += "\" NumberOfComponents=\"" + std::to_string(components)
-               + "\" format=\"ascii\">\n";
+        std::string& text = file_.xml;
+        text += "        <DataArray type=\"";
+        text += type;
+        text += "\" Name=\"";
+        text += name;
+        text += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"";
+        if (file_.format == VtkFormat::binary)
+        {
+            text += "appended\" offset=\"" + std::to_string(file_.appended.size()) + "\"/>\n";
+            appendVtkCompressedBlocks(file_.appended, values.data(), values.size()*sizeof(T));
+            return;
+        }
+        text += "ascii\">\n";
         for (std::size_t i = 0; i < values.size(); ++i)
         {
-            text_ += (i % 4 == 0) ? "          " : " ";
-            append(values[i], text_);
+            text += (i % 4 == 0) ? "          " : " ";
+            append(values[i], text);
             if (i % 4 == 3 || i + 1 == values.size())
             {
-                text_ += '\n';
+                text += '\n';
             }
         }
-        text_ += "        </DataArray>\n";
+        text += "        </DataArray>\n";
     }
 
-    std::string& text_;
+    VtpContents& file_;
     bool keepEmpty_;
 };
 
+static_assert(sizeof(Vec3) == 3*sizeof(double) && sizeof(long) == 8 && sizeof(int) == 4,
+              "binary arrays are the vectors' own bytes: Float64 x 3, Int64, Int32");
 
-// Cells of n points each, numbered consecutively: connectivity and offsets arrays.
-void appendConsecutiveCells(std::string& text, const char* section, std::size_t nCells, int n)
+
+// Cells of n points each: the offsets array.
+std::vector<long> offsetsOfCells(std::size_t nCells, int n)
 {
-    std::vector<long> connectivity(nCells*n), offsets(nCells);
-    for (std::size_t i = 0; i < connectivity.size(); ++i)
-    {
-        connectivity[i] = static_cast<long>(i);
-    }
+    std::vector<long> offsets(nCells);
     for (std::size_t c = 0; c < nCells; ++c)
     {
         offsets[c] = static_cast<long>((c + 1)*n);
     }
-    text += "      <";
-    text += section;
-    text += ">\n";
-    ArrayWriter arrays(text, true);
-    arrays.scalars("connectivity", connectivity);
-    arrays.scalars("offsets", offsets);
-    text += "      </";
-    text += section;
-    text += ">\n";
+    return offsets;
 }
 
 
-std::string pieceHeader(std::size_t nPoints, std::size_t nVerts, std::size_t nLines)
+void appendCells
+(
+    VtpContents& file,
+    const char* section,
+    const std::vector<long>& connectivity,
+    const std::vector<long>& offsets
+)
 {
-    return
+    file.xml += "      <";
+    file.xml += section;
+    file.xml += ">\n";
+    ArrayWriter arrays(file, true);
+    arrays.scalars("connectivity", connectivity);
+    arrays.scalars("offsets", offsets);
+    file.xml += "      </";
+    file.xml += section;
+    file.xml += ">\n";
+}
+
+
+// Cells of n points each, numbered consecutively: connectivity and offsets arrays.
+void appendConsecutiveCells(VtpContents& file, const char* section, std::size_t nCells, int n)
+{
+    std::vector<long> connectivity(nCells*n);
+    for (std::size_t i = 0; i < connectivity.size(); ++i)
+    {
+        connectivity[i] = static_cast<long>(i);
+    }
+    appendCells(file, section, connectivity, offsetsOfCells(nCells, n));
+}
+
+
+void appendPieceHeader
+(
+    VtpContents& file,
+    std::size_t nPoints,
+    std::size_t nVerts,
+    std::size_t nLines
+)
+{
+    file.xml +=
         "<?xml version=\"1.0\"?>\n"
         "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-        "header_type=\"UInt64\">\n"
+        "header_type=\"UInt64\"";
+    if (file.format == VtkFormat::binary)
+    {
+        file.xml += " compressor=\"vtkZLibDataCompressor\"";
+    }
+    file.xml +=
+        ">\n"
         "  <PolyData>\n"
         "    <Piece NumberOfPoints=\"" + std::to_string(nPoints)
       + "\" NumberOfVerts=\"" + std::to_string(nVerts)
@@ -220,17 +277,29 @@ std::string pieceHeader(std::size_t nPoints, std::size_t nVerts, std::size_t nLi
       + "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
 }
 
-const char* pieceFooter =
-    "    </Piece>\n"
-    "  </PolyData>\n"
-    "</VTKFile>\n";
 
-
-void appendPoints(std::string& text, const std::vector<Vec3>& points)
+std::string finished(VtpContents& file)
 {
-    text += "      <Points>\n";
-    ArrayWriter(text, true).vectors("Points", points);
-    text += "      </Points>\n";
+    file.xml +=
+        "    </Piece>\n"
+        "  </PolyData>\n";
+    if (file.format == VtkFormat::binary)
+    {
+        // Raw bytes after the underscore, up to the closing tag (VTK's "raw" encoding).
+        file.xml += "  <AppendedData encoding=\"raw\">\n   _";
+        file.xml += file.appended;
+        file.xml += "\n  </AppendedData>\n";
+    }
+    file.xml += "</VTKFile>\n";
+    return std::move(file.xml);
+}
+
+
+void appendPoints(VtpContents& file, const std::vector<Vec3>& points)
+{
+    file.xml += "      <Points>\n";
+    ArrayWriter(file, true).vectors("Points", points);
+    file.xml += "      </Points>\n";
 }
 
 
@@ -261,7 +330,7 @@ std::string attribute(const std::string& element, const std::string& name)
 } // namespace
 
 
-std::string particlesVtpText(const ParticleFrame& frame)
+std::string particlesVtp(const ParticleFrame& frame, VtkFormat format)
 {
     const std::size_t n = frame.position.size();
     const char* owner = "writeParticlesVtp";
@@ -273,18 +342,19 @@ std::string particlesVtpText(const ParticleFrame& frame)
     checkLength(frame.fixed, n, "fixed", owner);
     checkLength(frame.block, n, "block", owner);
 
-    std::string text = pieceHeader(n, n, 0);
-    text += "      <PointData";
+    VtpContents file(format);
+    appendPieceHeader(file, n, n, 0);
+    file.xml += "      <PointData";
     if (n > 0 && !frame.radius.empty())
     {
-        text += " Scalars=\"radius\"";
+        file.xml += " Scalars=\"radius\"";
     }
     if (n > 0 && !frame.velocity.empty())
     {
-        text += " Vectors=\"velocity\"";
+        file.xml += " Vectors=\"velocity\"";
     }
-    text += ">\n";
-    ArrayWriter arrays(text);
+    file.xml += ">\n";
+    ArrayWriter arrays(file);
     arrays.scalars("radius", frame.radius);
     arrays.vectors("velocity", frame.velocity);
     arrays.vectors("force", frame.force);
@@ -292,70 +362,94 @@ std::string particlesVtpText(const ParticleFrame& frame)
     arrays.scalars("bondCount", frame.bondCount);
     arrays.scalars("fixed", frame.fixed);
     arrays.scalars("block", frame.block);
-    text += "      </PointData>\n";
-    text += "      <CellData>\n      </CellData>\n";
-    appendPoints(text, frame.position);
-    appendConsecutiveCells(text, "Verts", n, 1);
-    text += pieceFooter;
-    return text;
+    file.xml += "      </PointData>\n";
+    file.xml += "      <CellData>\n      </CellData>\n";
+    appendPoints(file, frame.position);
+    appendConsecutiveCells(file, "Verts", n, 1);
+    return finished(file);
 }
 
 
-std::string bondsVtpText(const BondFrame& frame)
+std::string bondsVtp(const BondFrame& frame, VtkFormat format)
 {
-    const std::size_t n = frame.endA.size();
+    const std::size_t n = frame.ends.size();
     const char* owner = "writeBondsVtp";
-    if (frame.endB.size() != n)
-    {
-        throw std::invalid_argument
-        (
-            std::string(owner) + ": " + std::to_string(n) + " endA but "
-          + std::to_string(frame.endB.size()) + " endB"
-        );
-    }
     checkLength(frame.family, n, "family", owner);
     checkLength(frame.state, n, "state", owner);
     checkLength(frame.mode, n, "mode", owner);
     checkLength(frame.time, n, "breakTime", owner);
-
-    std::vector<Vec3> points;
-    points.reserve(2*n);
-    for (std::size_t i = 0; i < n; ++i)
+    for (const auto& ends : frame.ends)
     {
-        points.push_back(frame.endA[i]);
-        points.push_back(frame.endB[i]);
+        for (const long end : ends)
+        {
+            if (end < 0 || end >= static_cast<long>(frame.points.size()))
+            {
+                throw std::invalid_argument
+                (
+                    std::string(owner) + ": a bond ends at point " + std::to_string(end) + " of "
+                  + std::to_string(frame.points.size())
+                );
+            }
+        }
     }
 
-    std::string text = pieceHeader(2*n, 0, n);
-    text += "      <PointData>\n      </PointData>\n";
-    text += "      <CellData";
+    // ascii: both ends of every bond written again (the files as they always were).
+    std::vector<Vec3> ownEnds;
+    if (format == VtkFormat::ascii)
+    {
+        ownEnds.reserve(2*n);
+        for (const auto& [a, b] : frame.ends)
+        {
+            ownEnds.push_back(frame.points[a]);
+            ownEnds.push_back(frame.points[b]);
+        }
+    }
+    const std::vector<Vec3>& points = format == VtkFormat::ascii ? ownEnds : frame.points;
+
+    VtpContents file(format);
+    appendPieceHeader(file, points.size(), 0, n);
+    file.xml += "      <PointData>\n      </PointData>\n";
+    file.xml += "      <CellData";
     if (n > 0 && !frame.state.empty())
     {
-        text += " Scalars=\"state\"";
+        file.xml += " Scalars=\"state\"";
     }
-    text += ">\n";
-    ArrayWriter arrays(text);
+    file.xml += ">\n";
+    ArrayWriter arrays(file);
     arrays.scalars("family", frame.family);
     arrays.scalars("state", frame.state);
     arrays.scalars("mode", frame.mode);
     arrays.scalars("breakTime", frame.time);
-    text += "      </CellData>\n";
-    appendPoints(text, points);
-    appendConsecutiveCells(text, "Lines", n, 2);
-    text += pieceFooter;
-    return text;
+    file.xml += "      </CellData>\n";
+    appendPoints(file, points);
+    if (format == VtkFormat::ascii)
+    {
+        appendConsecutiveCells(file, "Lines", n, 2);
+    }
+    else
+    {
+        std::vector<long> connectivity;
+        connectivity.reserve(2*n);
+        for (const auto& [a, b] : frame.ends)
+        {
+            connectivity.push_back(a);
+            connectivity.push_back(b);
+        }
+        appendCells(file, "Lines", connectivity, offsetsOfCells(n, 2));
+    }
+    return finished(file);
 }
 
 
-void writeParticlesVtp(const std::string& path, const ParticleFrame& frame)
+void writeParticlesVtp(const std::string& path, const ParticleFrame& frame, VtkFormat format)
 {
-    writeFileAtomically(path, particlesVtpText(frame));
+    writeFileAtomically(path, particlesVtp(frame, format));
 }
 
 
-void writeBondsVtp(const std::string& path, const BondFrame& frame)
+void writeBondsVtp(const std::string& path, const BondFrame& frame, VtkFormat format)
 {
-    writeFileAtomically(path, bondsVtpText(frame));
+    writeFileAtomically(path, bondsVtp(frame, format));
 }
 
 
