@@ -7,12 +7,14 @@ Used by the sweep, speed-study and benchmark scripts with Debian's
 /usr/bin/python3."""
 import argparse
 import csv
+import filecmp
 import json
 import os
 import re
 import shutil
 import subprocess
 import sys
+import threading
 import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -158,8 +160,19 @@ def copy_common(case_copy):
     "../../common/..."` of a copied case's dictionaries looks (see cases/common/README.md)."""
     source = os.path.join(TOP, "cases", "common")
     target = os.path.join(os.path.dirname(os.path.abspath(case_copy)), "common")
-    if os.path.realpath(target) != os.path.realpath(source):
-        shutil.copytree(source, target, dirs_exist_ok=True)
+    if os.path.realpath(target) == os.path.realpath(source):
+        return
+    # file by file, each replaced whole and only when it differs: runs made side by side
+    # share the copy, and one of them may be reading it
+    for folder, _, names in os.walk(source):
+        into = os.path.join(target, os.path.relpath(folder, source))
+        os.makedirs(into, exist_ok=True)
+        for name in names:
+            src, dst = os.path.join(folder, name), os.path.join(into, name)
+            if not (os.path.exists(dst) and filecmp.cmp(src, dst, shallow=False)):
+                tmp = "%s.tmp%d.%d" % (dst, os.getpid(), threading.get_ident())
+                shutil.copyfile(src, tmp)
+                os.replace(tmp, dst)
 
 
 def copy_case(source, target):
