@@ -378,6 +378,24 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const st
 }
 
 
+double RubbleScene::advance(long chunk, bool& first, double& t, const std::string& what)
+{
+    // The first run after a set-up change makes its own set-up, as a resumed run's first does.
+    lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+    first = false;
+    steps_ += chunk;
+    t += chunk*dt_;
+    const double ke = totalKineticEnergy(*lmp_)/double(blockOfTag_.size());
+    if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
+    {
+        const std::string why = !std::isfinite(ke) ? std::string("kinetic energy is not finite")
+            : !bonds_->failure().empty() ? bonds_->failure() : waterForces_->failure();
+        throw RunError(what + " blew up at t = " + formatNumber(t) + " s (step " + std::to_string(steps_) + "): " + why);
+    }
+    return ke;
+}
+
+
 void RubbleScene::writeSettlingCheckpoint(double t)
 {
     // LIGGGHTS' restart first, named by its step, then the saved state that
@@ -591,16 +609,7 @@ void RubbleScene::settle()
     bool first = true;
     while (t < settings_.maxTime)
     {
-        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
-        first = false;
-        steps_ += chunk;
-        t += chunk*dt_;
-        ke = totalKineticEnergy(*lmp_)/n;
-        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
-        {
-            throw RunError("settling blew up at t = " + formatNumber(t) + " s (step " + std::to_string(steps_) + "): "
-                + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
-        }
+        ke = advance(chunk, first, t, "settling");
         quietChecks = (ke < settings_.kineticEnergyThreshold && t >= settings_.minTime) ? quietChecks + 1 : 0;
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (t >= nextLog || quietChecks >= 2)
@@ -696,7 +705,6 @@ void RubbleScene::compact()
             << settings_.maxCompactionPressure << " Pa";
         context_.log(msg.str());
     }
-    const long n = static_cast<long>(blockOfTag_.size());
     const long closingChunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
     // While it holds, the lid backs off every 10 ms towards holdPressure.
     const long holdingChunk = std::max(1L, static_cast<long>(std::lround(0.01/dt_)));
@@ -716,16 +724,7 @@ void RubbleScene::compact()
     while (t < holdUntil)
     {
         const long chunk = holdUntil == HUGE_VAL ? closingChunk : holdingChunk;
-        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
-        first = false;
-        steps_ += chunk;
-        t += chunk*dt_;
-        const double ke = totalKineticEnergy(*lmp_)/n;
-        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
-        {
-            throw RunError("compaction blew up at t = " + formatNumber(t) + " s of compaction (step "
-                + std::to_string(steps_) + "): " + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
-        }
+        const double ke = advance(chunk, first, t, "compaction (t counted from its start)");
         loads = plates_->loads();
         const double porosity = porosityInGap(rubble_.iceVolume, area, plates_->gap());
         if (loads.lid/area > settings_.maxCompactionPressure)
@@ -795,7 +794,6 @@ void RubbleScene::release()
     lmp_->command("group released type " + std::to_string(mobileType));
     lmp_->command("fix integrate released nve/sphere");
     plates_->withdraw();
-    const long n = static_cast<long>(blockOfTag_.size());
     const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
     const double minTime = std::min(0.2, settings_.releaseTime);
     double t = 0.0, ke = 0.0;
@@ -803,16 +801,7 @@ void RubbleScene::release()
     bool first = true;
     while (t < settings_.releaseTime && quietChecks < 2)
     {
-        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
-        first = false;
-        steps_ += chunk;
-        t += chunk*dt_;
-        ke = totalKineticEnergy(*lmp_)/n;
-        if (!std::isfinite(ke) || !bonds_->failure().empty() || (waterForces_ && !waterForces_->failure().empty()))
-        {
-            throw RunError("the release of the compacted rubble blew up at t = " + formatNumber(t) + " s (step "
-                + std::to_string(steps_) + "): " + (std::isfinite(ke) ? bonds_->failure() : std::string("kinetic energy is not finite")));
-        }
+        ke = advance(chunk, first, t, "the release of the compacted rubble (t counted from the release)");
         quietChecks = (ke < settings_.kineticEnergyThreshold && t >= minTime) ? quietChecks + 1 : 0;
     }
     released_ = measureLayer(layer_.time + compacted_.time + t, ke, quietChecks >= 2);
