@@ -219,11 +219,6 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
     {
         settlingIce_.material.frictionCoefficient = settings_.settlingFriction;
     }
-    compactionIce_ = settlingIce_;
-    if (settings_.compactionFriction >= 0.0)
-    {
-        compactionIce_.material.frictionCoefficient = settings_.compactionFriction;
-    }
 }
 
 
@@ -719,7 +714,8 @@ void RubbleScene::compact()
     {
         lmp_->command("fix m5 all property/global coefficientFriction peratomtypepair 3 " + typePairMatrix(mu, 0.0));
     };
-    setFriction(compactionIce_.material.frictionCoefficient);
+    setFriction(settings_.compactionFriction >= 0.0 ? settings_.compactionFriction
+                                                    : settlingIce_.material.frictionCoefficient);
     bool first = true;
     while (t < holdUntil)
     {
