@@ -305,15 +305,16 @@ def write_readme_section(readme, name, text):
     print(f"{readme}: {name} written from the published results")
 
 
-def publish_files(sources, folder):
+def publish_files(sources, folder, names=None):
     """A study's --publish: copies its output files (text or images) into the committed folder,
-    each atomically; exits naming the missing ones, having copied none, unless all exist."""
+    each atomically (under names[i] when given, else its own name); exits naming the missing
+    ones, having copied none, unless all exist."""
     missing = [src for src in sources if not os.path.isfile(src)]
     if missing or not sources:
         sys.exit("not published: missing (run the study first): " + (", ".join(missing) or "every output"))
     os.makedirs(folder, exist_ok=True)
-    for src in sources:
-        target = os.path.join(folder, os.path.basename(src))
+    for i, src in enumerate(sources):
+        target = os.path.join(folder, names[i] if names else os.path.basename(src))
         shutil.copyfile(src, target + ".tmp")
         os.replace(target + ".tmp", target)
         print("published", target)

@@ -37,12 +37,25 @@ strengths), freezeBondCalibration (the calibratedCoeffs dictionary of
 cases/common). --publish copies the first four into this folder and the
 dictionary into cases/common.
 
+Moduli: by default every bond family keeps the test cases' modulus (freeze and
+ice bonds equal, `freezeToIceModulusRatio 1`). A case whose freeze-bonds are
+more compliant than its ice (the punch: the reference's k_n 51.05 MPa/m, E
+2.81 MPa against the ice's 195 MPa) needs the relation measured at its own
+moduli: --ice-modulus and --freeze-modulus set them in every run, the
+dictionary records their ratio (the program refuses a case of another
+ratio), --dictionary names the file written into cases/common, and --slow
+stretches every test's loading time (compliant bonds respond slower: the
+interface's first period grows as 1/sqrt(E)).
+
 usage: particleStrengths.py [--jobs 2] [--out DIR] [--rubble SUMMARY.json ...]
-                            [--bonds freezeBonds.csv] [--publish]"""
+                            [--bonds freezeBonds.csv] [--ice-modulus PA --freeze-modulus PA]
+                            [--slow FACTOR] [--dictionary NAME] [--publish]"""
 import argparse
+import re
 import concurrent.futures
 import csv
 import json
+import math
 import os
 import sys
 
@@ -116,9 +129,13 @@ class Runner:
     """Runs the virtual tests, each in its own copy of its case under `out`; resumable
     (a run whose summary exists, made with the same strengths and pressure, is not repeated)."""
 
-    def __init__(self, out, modulus=None):
+    def __init__(self, out, ice_modulus=None, freeze_modulus=None, slow=1.0):
+        """ice_modulus: material and ice bonds; freeze_modulus: freeze-bonds (each None: the case's);
+        slow: every test's loading time multiplied by it."""
         self.out = out
-        self.modulus = modulus
+        self.ice_modulus = ice_modulus
+        self.freeze_modulus = freeze_modulus
+        self.slow = slow
 
     def _copy(self, case, work):
         iceCases.copy_case(case, work)
@@ -126,11 +143,12 @@ class Runner:
         # the particle-level strengths themselves: one fixed set, c_f = 1, direct
         with open(props, "w") as f:
             f.write(open(os.path.join(SHEAR_CASE, "constant", "freezeBondProperties")).read())
-        if self.modulus:
-            ice = os.path.join(work, "constant", "iceProperties")
-            for entry in ("material.youngsModulus", "bondFamilies.ice.youngsModulus",
-                          "bondFamilies.freeze.youngsModulus"):
-                iceCases.set_entry(ice, entry, f"{self.modulus:g}")
+        ice = os.path.join(work, "constant", "iceProperties")
+        moduli = {"material.youngsModulus": self.ice_modulus, "bondFamilies.ice.youngsModulus": self.ice_modulus,
+                  "bondFamilies.freeze.youngsModulus": self.freeze_modulus}
+        for entry, value in moduli.items():
+            if value:
+                iceCases.set_entry(ice, entry, f"{value:g}")
 
     def shear(self, label, tensile, shear, pressure, expected, time_to_failure=SHEAR_TIME_TO_FAILURE):
         """expected: the effective shear strength on the bond area guessed beforehand (sets the
@@ -141,7 +159,7 @@ class Runner:
             self._copy(SHEAR_CASE, work)
             props = os.path.join(work, "constant", "shearTestProperties")
             load = expected / 0.434 * 0.75 * 6.36e-3 * 1.6 + 1.0      # N, P at failure, roughly
-            iceCases.set_entry(props, "loading.loadRate", f"{load / time_to_failure:.6g}")
+            iceCases.set_entry(props, "loading.loadRate", f"{load / (time_to_failure * self.slow):.6g}")
             iceCases.set_entry(props, "loading.maxLoad", f"{3 * load:.6g}")
             iceCases.set_entry(props, "loading.samples", 1000)
             iceCases.run_app("freezeBondShearDEM", work, 1,
@@ -167,9 +185,9 @@ class Runner:
             self._copy(TENSION_CASE, work)
             props = os.path.join(work, "constant", "tensionTestProperties")
             # pull at the peak about 0.56 um per kPa on the bond area (5.4e8 Pa; scales as 1/E)
-            modulus = self.modulus or 5.4e8
+            modulus = self.freeze_modulus or 5.4e8
             pull = 0.56e-9 * expected * 5.4e8 / modulus
-            speed = pull / time_to_peak
+            speed = pull / (time_to_peak * self.slow)
             iceCases.set_entry(props, "loading.pullSpeed", f"{speed:.6g}")
             iceCases.set_entry(props, "loading.maxPull", f"{3 * pull:.6g}")
             iceCases.set_entry(props, "loading.samples", 1000)
@@ -189,6 +207,35 @@ class Runner:
 def modulus_of(work):
     return float(iceCases.get_entry(os.path.join(work, "constant", "iceProperties"),
                                     "bondFamilies.freeze.youngsModulus").split()[0])
+
+
+def attempt(test, *args):
+    """A virtual test's figures, or {"failed": the application's message} (compliant freeze-bonds
+    strong in tension slip out of the shear test's box before their plane fails)."""
+    label, t_p, s_p, applied = args[:4]
+    try:
+        return test(*args)
+    except RuntimeError as error:
+        lines = str(error).splitlines()
+        reason = next((lines[i + 1].strip() for i, line in enumerate(lines[:-1]) if "FATAL" in line), lines[0])
+        print(f"{test.__name__} {label}: failed ({reason})", flush=True)
+        return {"test": test.__name__, "label": label, "T_p": t_p, "S_p": s_p, "applied_Pa": applied,
+                "failed": reason}
+
+
+def succeeded(run):
+    return "failed" not in run
+
+
+def strengths(text):
+    """An argparse type: at least two positive strengths in Pa, comma-separated, ascending."""
+    try:
+        values = [iceCases.positive_number(v) for v in text.split(",")]
+    except argparse.ArgumentTypeError as error:
+        raise argparse.ArgumentTypeError(f"'{text}': {error}")
+    if len(values) < 2 or values != sorted(set(values)):
+        raise argparse.ArgumentTypeError(f"needs two or more ascending strengths, got '{text}'")
+    return values
 
 
 def guess_shear(rho, s_p):
@@ -218,14 +265,34 @@ def main():
     ap.add_argument("--bonds", help="a rubbleBeam run's postProcessing/freezeBonds.csv (distribution, reported)")
     ap.add_argument("--area-correction", type=iceCases.positive_number, default=None,
                     help="c_f of the derived table (default: cases/common/freezeBondProperties')")
+    ap.add_argument("--ice-modulus", type=iceCases.positive_number, default=None,
+                    help="Young's modulus of the material and the ice bonds in every run, Pa (default: the cases')")
+    ap.add_argument("--freeze-modulus", type=iceCases.positive_number, default=None,
+                    help="Young's modulus of the freeze-bonds in every run, Pa (default: the ice's)")
+    ap.add_argument("--slow", type=iceCases.positive_number, default=1.0,
+                    help="every test's loading time multiplied by this (compliant freeze-bonds)")
+    ap.add_argument("--sweep-strengths", type=strengths, default=SWEEP_STRENGTHS, metavar="S1,S2,...",
+                    help="particle shear strengths S_p of the sweep, Pa (default %(default)s; compliant "
+                         "freeze-bonds slip millimetres before the strongest break)")
+    ap.add_argument("--dictionary", default="freezeBondCalibration",
+                    help="name of the calibratedCoeffs dictionary written (and published into cases/common)")
     ap.add_argument("--publish", action="store_true",
                     help="run nothing; copy the finished study's csv, md, png here and its dictionary into cases/common")
     a = ap.parse_args()
+    if not {40e3, 160e3} <= set(a.sweep_strengths):
+        ap.error("--sweep-strengths: must hold 40000 and 160000 (the sensitivity runs' S_p)")
+    if (a.ice_modulus is None) != (a.freeze_modulus is None):
+        ap.error("--ice-modulus and --freeze-modulus go together (their ratio is what the calibration holds for)")
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", a.dictionary):
+        ap.error(f"--dictionary: a plain file name (letters, digits, _), got '{a.dictionary}'")
+    stem = "particleStrengths" if a.dictionary == "freezeBondCalibration" else \
+        "particleStrengths" + a.dictionary[len("freezeBondCalibration"):] \
+        if a.dictionary.startswith("freezeBondCalibration") else "particleStrengths_" + a.dictionary
     outputs = [os.path.join(a.out, f) for f in ("particleStrengths.csv", "particleStrengths.md", "particleStrengths.png",
                                                 "particleStrengths.json")]
     if a.publish:
-        iceCases.publish_files(outputs, HERE)
-        iceCases.publish_files([os.path.join(a.out, "freezeBondCalibration")], COMMON)
+        iceCases.publish_files(outputs, HERE, [os.path.basename(p).replace("particleStrengths", stem) for p in outputs])
+        iceCases.publish_files([os.path.join(a.out, a.dictionary)], COMMON)
         return
     os.makedirs(a.out, exist_ok=True)
     cf = a.area_correction or float(iceCases.get_entry(os.path.join(COMMON, "freezeBondProperties"),
@@ -235,7 +302,8 @@ def main():
     target = conf_rows[0]["bond_mean_Pa"]
     print(f"rubble confinement on the bond area: {target:.0f} Pa ({conf_rows[0]['source']})", flush=True)
 
-    runner = Runner(a.out)
+    runner = Runner(a.out, a.ice_modulus, a.freeze_modulus, a.slow)
+    modulus_ratio = a.freeze_modulus / a.ice_modulus if a.ice_modulus else 1.0
     pool = concurrent.futures.ThreadPoolExecutor(a.jobs)
 
     # 1. the applied pressure that gives the rubble's per-bond confinement in each test
@@ -249,15 +317,15 @@ def main():
         t_p = rho * s_p
         p = applied if applied is not None else factor * pressure[test]
         if test == "shear":
-            return pool.submit(r.shear, label, t_p, s_p, p, guess_shear(rho, s_p), SHEAR_TIME_TO_FAILURE * slow)
-        return pool.submit(r.tension, label, t_p, s_p, p, 0.96 * t_p, TENSION_TIME_TO_PEAK * slow)
+            return pool.submit(attempt, r.shear, label, t_p, s_p, p, guess_shear(rho, s_p), SHEAR_TIME_TO_FAILURE * slow)
+        return pool.submit(attempt, r.tension, label, t_p, s_p, p, 0.96 * t_p, TENSION_TIME_TO_PEAK * slow)
 
     # 2. the sweep
     set_ratios = sorted({round(t / s, 4) for t, s in sets.values()})
     ratios = sorted(set(set_ratios + [round(ICE_RATIO, 4)] + CONTEXT_RATIOS))
     sweep = {}
     for rho in ratios:
-        for s_p in SWEEP_STRENGTHS:
+        for s_p in a.sweep_strengths:
             for test in ("shear", "tension"):
                 sweep[(test, rho, s_p)] = submit(test, f"rho{rho:g}_S{s_p:g}", rho, s_p)
     # 3. sensitivity at the 4 h set's ratio
@@ -271,7 +339,7 @@ def main():
     for test in ("shear", "tension"):
         sens[("old25kPa_rho1", test, 160e3)] = submit(test, "old25kPa_rho1_S160000", 1.0, 160e3, applied=OLD_CONFINEMENT)
         sens[("slower", test, 160e3)] = submit(test, f"slower_rho{rho0:g}_S160000", rho0, 160e3, slow=2.0)
-    soft = Runner(os.path.join(a.out, "modulus1.95e8"), modulus=1.95e8)
+    soft = Runner(os.path.join(a.out, "modulus1.95e8"), 1.95e8, 1.95e8 * modulus_ratio, a.slow)
     for test in ("shear", "tension"):
         sens[("modulus1.95e8", test, 160e3)] = submit(test, f"E1.95e8_rho{rho0:g}_S160000", rho0, 160e3, r=soft)
 
@@ -282,11 +350,16 @@ def main():
 
     relation = {}
     for rho in ratios:
-        ss, bs, es = fit(SWEEP_STRENGTHS, [sweep[("shear", rho, s)]["effective_Pa"] for s in SWEEP_STRENGTHS])
-        tps = [rho * s for s in SWEEP_STRENGTHS]
-        st, bt, et = fit(tps, [sweep[("tension", rho, s)]["effective_Pa"] for s in SWEEP_STRENGTHS])
+        shear = [s for s in a.sweep_strengths if succeeded(sweep[("shear", rho, s)])]
+        tension = [s for s in a.sweep_strengths if succeeded(sweep[("tension", rho, s)])]
+        if len(shear) < 2 or len(tension) < 2:
+            print(f"rho {rho:g}: left out of the relation, fewer than two runs of a test finished", flush=True)
+            continue
+        ss, bs, es = fit(shear, [sweep[("shear", rho, s)]["effective_Pa"] for s in shear])
+        st, bt, et = fit([rho * s for s in tension], [sweep[("tension", rho, s)]["effective_Pa"] for s in tension])
         relation[rho] = {"shearSlope": ss, "shearIntercept": bs, "shearError": es,
                          "tensileSlope": st, "tensileIntercept": bt, "tensileError": et}
+    ratios = sorted(relation)
     error = max(max(r["shearError"], r["tensileError"]) for r in relation.values())
 
     def coefficients(rho):
@@ -326,11 +399,12 @@ def main():
     runs += list(checks.values())
     for d in derived:
         tag = f"check_{d['set']}_{d['choice'].split()[0]}"
-        d["check"] = (checks[(tag, "tension")]["effective_Pa"], checks[(tag, "shear")]["effective_Pa"])
+        d["check"] = tuple(checks[(tag, test)].get("effective_Pa", float("nan")) for test in ("tension", "shear"))
     # The stated error: the fits' largest residual or the verification runs' largest
     # deviation from the relation, whichever is larger.
     fit_error = error
-    error = max([fit_error] + [abs(d["check"][k] / d["pred"][k] - 1) for d in derived for k in (0, 1)])
+    error = max([fit_error] + [abs(d["check"][k] / d["pred"][k] - 1) for d in derived for k in (0, 1)
+                               if math.isfinite(d["check"][k])])
 
     write_csv(os.path.join(a.out, "particleStrengths.csv"), runs)
     summary = {"case": "freezeBondShear", "study": "particleStrengths", "area_correction": cf,
@@ -340,10 +414,12 @@ def main():
                "relation": {f"{rho:g}": r for rho, r in sorted(relation.items())}, "relative_error": error,
                "derived": [{k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items()} for d in derived]}
     iceCases.write_atomically(os.path.join(a.out, "particleStrengths.json"), json.dumps(summary, indent=2) + "\n")
-    write_dictionary(os.path.join(a.out, "freezeBondCalibration"), relation, target, error, cf, derived)
+    write_dictionary(os.path.join(a.out, a.dictionary), relation, target, error, cf, derived,
+                     (a.ice_modulus, a.freeze_modulus, a.slow))
     write_markdown(os.path.join(a.out, "particleStrengths.md"), conf_rows, dist, pressure, probe_s, probe_t,
-                   relation, fit_error, error, sens, rho0, derived, cf)
-    plot(os.path.join(a.out, "particleStrengths.png"), sweep, relation, ratios, derived, sens, rho0, sets, cf)
+                   relation, fit_error, error, sens, rho0, derived, cf, a.sweep_strengths)
+    plot(os.path.join(a.out, "particleStrengths.png"), sweep, relation, ratios, derived, sens, rho0, sets, cf,
+         a.sweep_strengths)
     print(open(os.path.join(a.out, "particleStrengths.md")).read())
 
 
@@ -352,12 +428,20 @@ def write_csv(path, runs):
             "breaks_in_shear", "breaks", "steps", "modulus_Pa", "wall_s"]
     lines = [",".join(keys)]
     for r in runs:
-        lines.append(",".join(f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys))
+        lines.append(",".join(f"{r[k]:.6g}" if isinstance(r.get(k), float) else str(r.get(k, "failed")) for k in keys))
     iceCases.write_atomically(path, "\n".join(lines) + "\n")
 
 
-def write_dictionary(path, relation, confinement, error, cf, derived):
+def write_dictionary(path, relation, confinement, error, cf, derived, moduli):
     rhos = sorted(relation)
+    ice_modulus, freeze_modulus, slow = moduli
+    if ice_modulus:
+        how = (f"freeze-bonds of {freeze_modulus:g} Pa on ice of\n  {ice_modulus:g} Pa"
+               + (f", every test's loading {slow:g} times slower" if slow != 1.0 else "")
+               + f" (--ice-modulus {ice_modulus:g} --freeze-modulus {freeze_modulus:g}).")
+        ratio = freeze_modulus / ice_modulus
+    else:
+        how, ratio = "freeze and ice bonds of equal modulus.", 1.0
 
     def column(key, scale=1.0, fmt="{:.4f}"):
         return "(" + " ".join(fmt.format(relation[r][key] * scale) for r in rhos) + ")"
@@ -372,7 +456,7 @@ def write_dictionary(path, relation, confinement, error, cf, derived):
   cases/freezeBondShear/studies/particleStrengths.py (see its README
   section there): the virtual shear and tension tests run at the rubble's
   confinement, {confinement:.0f} Pa per bond on the bond area (c_f p_c of
-  cases/rubbleBeam's cuboid rubble), freeze and ice bonds of equal modulus.
+  cases/rubbleBeam's cuboid rubble), {how}
   At each particle ratio rho = T_p / S_p, on the bond area:
       S_eff = shearSlope S_p + shearIntercept
       T_eff = tensileSlope T_p + tensileIntercept
@@ -388,7 +472,7 @@ shearIntercepts         {column('shearIntercept', fmt='{:.0f}')};    // Pa
 tensileSlopes           {column('tensileSlope')};
 tensileIntercepts       {column('tensileIntercept', fmt='{:.0f}')};    // Pa
 confinement             {confinement:.0f};        // Pa, per bond on the bond area, in the tests
-freezeToIceModulusRatio 1;
+freezeToIceModulusRatio {ratio:.6g};
 relativeError           {error:.3f};      // the fits' largest residual or the verification runs' deviation
 
 // ************************************************************************* //
@@ -397,7 +481,7 @@ relativeError           {error:.3f};      // the fits' largest residual or the v
 
 
 def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, fit_error, error, sens, rho0, derived,
-                   cf):
+                   cf, sweep_strengths):
     md = ["## Confinement", "",
           "| rubble | freeze-bonds | c_f | p_c on the real area: mean / max (kPa) | per bond on the bond area, c_f p_c: mean (kPa) |",
           "|---|---|---|---|---|"]
@@ -419,7 +503,7 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
         ratio = (r["shearSlope"] * 160e3 + r["shearIntercept"]) / (r["tensileSlope"] * rho * 160e3 + r["tensileIntercept"])
         md.append(f"| {rho:g} | {r['shearSlope']:.4f} | {kpa(r['shearIntercept'], 2)} | {100 * r['shearError']:.1f} % | "
                   f"{r['tensileSlope']:.4f} | {kpa(r['tensileIntercept'], 2)} | {100 * r['tensileError']:.1f} % | {ratio:.2f} |")
-    md += ["", f"Largest residual of the fits: {100 * fit_error:.1f} % (S_p 10-400 kPa); largest deviation of a "
+    md += ["", f"Largest residual of the fits: {100 * fit_error:.1f} % (S_p {kpa(sweep_strengths[0], 0)}-{kpa(sweep_strengths[-1], 0)} kPa); largest deviation of a "
            f"verification run (the table at the end, before and after) from the relation: "
            f"{100 * max(abs(d['check'][k] / d['pred'][k] - 1) for d in derived for k in (0, 1)):.1f} %. The "
            f"stated error of the relation, `relativeError`: **{100 * error:.1f} %**.", "",
@@ -427,6 +511,9 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
            "| variant | test | S_p (kPa) | confinement per bond (kPa) | effective (kPa) | against the relation |",
            "|---|---|---|---|---|---|"]
     for (name, test, s_p), r in sens.items():
+        if not succeeded(r):
+            md.append(f"| {name} | {test} | {kpa(s_p, 0)} | | failed: {r['failed']} | |")
+            continue
         rho = r["T_p"] / r["S_p"]
         c = relation.get(round(rho, 4))
         pred = None
@@ -446,7 +533,7 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
     iceCases.write_atomically(path, "\n".join(md) + "\n")
 
 
-def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
+def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf, sweep_strengths):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -454,12 +541,15 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
     fig, axes = plt.subplots(2, 2, figsize=(13, 10))
     ax = axes.ravel()
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(ratios)))
-    x = np.array(SWEEP_STRENGTHS)
+    x = np.array(sweep_strengths)
     for rho, col in zip(ratios, colours):
         r = relation[rho]
-        ax[0].plot(x * 1e-3, [sweep[("shear", rho, s)]["effective_Pa"] * 1e-3 for s in x], "o", color=col)
+        done = [s for s in x if succeeded(sweep[("shear", rho, s)])]
+        ax[0].plot(np.array(done) * 1e-3, [sweep[("shear", rho, s)]["effective_Pa"] * 1e-3 for s in done], "o", color=col)
         ax[0].plot(x * 1e-3, (r["shearSlope"] * x + r["shearIntercept"]) * 1e-3, "-", color=col, label=f"rho {rho:g}")
-        ax[1].plot(rho * x * 1e-3, [sweep[("tension", rho, s)]["effective_Pa"] * 1e-3 for s in x], "o", color=col)
+        done = [s for s in x if succeeded(sweep[("tension", rho, s)])]
+        ax[1].plot(rho * np.array(done) * 1e-3, [sweep[("tension", rho, s)]["effective_Pa"] * 1e-3 for s in done], "o",
+                   color=col)
         ax[1].plot(rho * x * 1e-3, (r["tensileSlope"] * rho * x + r["tensileIntercept"]) * 1e-3, "-", color=col)
     for d in derived:
         marker = {"sets": "*", "iceRatio": "s"}.get(d["choice"], "x")
@@ -501,6 +591,8 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
         points = [(base[s_p]["confinement_Pa"], base[s_p]["effective_Pa"])]
         for name in ("half", "twice", "old25kPa"):
             r = sens[(name, "shear", s_p)]
+            if not succeeded(r):
+                continue
             points.append((r["confinement_Pa"], r["effective_Pa"]))
         points.sort()
         c = relation[rho0]
@@ -510,6 +602,8 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf):
         tens = [(base[s_p]["confinement_Pa"], sweep[("tension", rho0, s_p)]["effective_Pa"])]
         for name in ("half", "twice", "old25kPa"):
             r = sens[(name, "tension", s_p)]
+            if not succeeded(r):
+                continue
             tens.append((r["confinement_Pa"], r["effective_Pa"]))
         tens.sort()
         tpred = c["tensileSlope"] * rho0 * s_p + c["tensileIntercept"]

@@ -1,0 +1,250 @@
+#!/usr/bin/python3
+"""Why a punched rubble does or does not bend as a beam, and how its peak moves with the
+freeze-bond set and the porosity: reduced punches (issue 18, scenes.md section 6).
+
+One reduced keel: ../rubbleBeam's cuboid blocks in a 1.6 x 0.4 m box, 0.3 m of rubble (the ice
+of porosity 0.40 rained in), settled once, then compacted between plates (rubbleDEM -stage
+compact) to each target porosity. Each punch is a copy of this case on that box (ridgeDEM -stage
+all), 60 mm of travel; its first freeze-bond failures come from postProcessing/beamPhase.py.
+
+  cause   one cause at a time, at fixed particle strengths (the compliant calibration's 4 h pair,
+          put on the bonds directly) and 0.05 m/s: the keel (settled / compacted to 0.35), the
+          freeze-bonds' modulus (the ice's 195 MPa / c_f x the ice's 38.4 MPa / the reference
+          punch's 2.81 MPa) and the ends (clamped / simple): 12 punches.
+  sweep   the case's own freeze-bonds (2.81 MPa, strengths calibrated at that modulus) at
+          0.0125 m/s: the sets 2 min / 4 h / ultimate on the keel compacted to 0.35, and the
+          4 h set on keels compacted to 0.30 / 0.35 / 0.40 / 0.45 (each keel's porosity after the
+          plates back off is reported: a compacted heap springs back).
+
+Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
+marked). --publish copies the three into ../results/ as punchStudy_<study>.*.
+
+usage: studies/punchStudies.py {cause,sweep} [--work DIR] [--jobs N] [--publish]
+       (default WORK runs/punchStudies; cause about 5 min, sweep about 15 min on 2 cores)"""
+import argparse
+import concurrent.futures
+import json
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASE = os.path.dirname(HERE)
+TOP = os.path.abspath(os.path.join(CASE, "..", ".."))
+sys.path.insert(0, os.path.join(TOP, "postProcessing"))
+import iceCases  # noqa: E402
+from beamPhase import first_failures  # noqa: E402
+
+ICE_MODULUS = 1.95e8
+FREEZE_MODULI = {"ice 195 MPa": 1.95e8, "c_f x ice 38.4 MPa": 0.197 * 1.95e8, "k_n 51 MPa/m: 2.81 MPa": 2.80775e6}
+BOX = (1.6, 0.4, 0.3)               # m: length, width, rubble thickness
+TRAVEL = 0.06                       # m
+ICE_POROSITY = 0.40                 # the ice of a BOX[2] layer at this porosity is rained in
+
+
+def calibrated_4h_particle_strengths():
+    """(T_p, S_p) the compliant calibration gives the 4 h set (its dictionary's derived table)."""
+    path = os.path.join(TOP, "cases", "common", "freezeBondCalibrationCompliant")
+    for line in open(path):
+        words = line.split()
+        if words[:2] == ["4h", "sets"]:
+            i = words.index("particle")
+            return float(words[i + 1]) * 1e3, float(words[i + 3]) * 1e3
+    raise RuntimeError(f"{path}: no '4h sets' row in its derived table")
+
+
+def settled_keel(work):
+    keel = os.path.join(work, "keels", "settled")
+    if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
+        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), keel, *BOX, 6, 15,
+                                   {"settling.minTime": 1})
+        iceCases.uncompacted(os.path.join(keel, "constant", "rubbleProperties"), ICE_POROSITY)
+        iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
+    return os.path.join(keel, "DEM", "settled.h5")
+
+
+def compacted_keel(work, porosity):
+    """A keel of the same ice as the settled heap (a rubbleThickness layer at porosity 0.40), rained
+    in and compacted between plates to `porosity`: (stage file, its summary) or (None, the reason)."""
+    keel = os.path.join(work, "keels", f"compacted{porosity:g}")
+    stage = os.path.join(keel, "DEM", "compacted.h5")
+    if not os.path.exists(stage):
+        # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
+        thickness = BOX[2] * (1 - ICE_POROSITY) / (1 - porosity)
+        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), keel, BOX[0], BOX[1], thickness, 6, 15,
+                                   {"settling.minTime": 1, "compaction.targetPorosity": porosity})
+        try:
+            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
+            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
+        except RuntimeError as error:
+            return None, refusal(str(error))
+    line = next(l for l in open(os.path.join(keel, "log.compact")) if l.startswith("Compacted"))
+    found = re.search(r"porosity ([\d.]+) -> ([\d.]+), ([\d.]+) after the lid backed off", line)
+    return stage, {"settled": float(found.group(1)), "closed": float(found.group(2)),
+                   "held": float(found.group(3))}
+
+
+def refusal(log_tail):
+    """The application's own message in a failed run's log tail (the line after FATAL)."""
+    lines = log_tail.splitlines()
+    for i, line in enumerate(lines):
+        if "FATAL" in line and i + 1 < len(lines):
+            return lines[i + 1].strip()
+    return lines[-1] if lines else "failed"
+
+
+def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped"):
+    """A reduced punch in `run`; returns its figures (summary + beamPhase)."""
+    if not iceCases.finished(run):
+        iceCases.copy_case(CASE, run)
+        props = os.path.join(run, "constant", "ridgeProperties")
+        text = open(props).read()
+        open(props, "w").write(text.replace(
+            "\nconsolidatedLayer", "\nbox\n{\n    length %g;\n    width %g;\n}\n\nconsolidatedLayer" % BOX[:2], 1))
+        iceCases.set_entry(props, "keel.settledRubble", '"%s"' % stage)
+        for entry, value in (("test.settleTime", 0.05), ("ends.fixedLength", 0.1), ("ends.endSupport", support),
+                             ("test.speed", speed)):
+            iceCases.set_entry(props, entry, value)
+        iceCases.set_entry(os.path.join(run, "system", "controlDict"), "maxTravel", TRAVEL)
+        bonds = os.path.join(run, "constant", "freezeBondProperties")
+        if freeze_modulus:
+            iceCases.set_entry(os.path.join(run, "constant", "iceProperties"), "bondFamilies.freeze.youngsModulus",
+                               f"{freeze_modulus:g}")
+        if fixed_strengths:
+            # the same particle-level pair on every bond whatever the modulus: direct, c_f 1
+            iceCases.set_entry(bonds, "particleStrengths", "direct")
+            iceCases.set_entry(bonds, "areaCorrection.value", 1)
+            iceCases.set_entry(bonds, "fixedSetCoeffs.sets.4h.tensile", f"{fixed_strengths[0]:g}")
+            iceCases.set_entry(bonds, "fixedSetCoeffs.sets.4h.shear", f"{fixed_strengths[1]:g}")
+        if bond_set:
+            iceCases.set_entry(bonds, "fixedSetCoeffs.set", bond_set)
+        iceCases.run_app("ridgeDEM", run, 1, ["-stage", "all"], "log.ridgeDEM")
+    s = iceCases.summary(run)
+    f = first_failures(run)
+    first = f["first_failure"] or {}
+    return {"peak_N": s["peak_force_N"], "travel_at_peak_mm": 1e3 * s["travel_at_peak_m"],
+            "freeze_bonds": s.get("freeze_bonds"), "broken_bonds": s["broken_bonds"],
+            "first_travel_mm": 1e3 * first["travel_m"] if first else None,
+            "first_force_N": first.get("force_N"), "first_rise": first.get("force_rise"),
+            "first_from_load_cm": 100 * first["from_load_line_m"] if first else None,
+            "first_height": first.get("height_in_keel"), "first_mode": first.get("mode"),
+            "bottom_centre_tension_share": f.get("bottom_centre_tension_share_of_first_n"),
+            "wall_s": s.get("wall_s")}
+
+
+def cause_points(work):
+    strengths = calibrated_4h_particle_strengths()
+    settled = settled_keel(work)
+    compacted, info = compacted_keel(work, 0.35)
+    if compacted is None:
+        raise RuntimeError(f"the reduced keel does not compact to 0.35: {info}")
+    points = []
+    for keel_name, stage in (("settled", settled), ("compacted 0.35", compacted)):
+        for modulus_name, modulus in FREEZE_MODULI.items():
+            for support in ("clamped", "simple"):
+                name = f"{keel_name.split()[0]}_E{modulus:.3g}_{support}"
+                points.append(({"keel": keel_name, "freeze-bond modulus": modulus_name, "ends": support},
+                               dict(run=os.path.join(work, "cause", name), stage=stage, speed=0.05,
+                                    freeze_modulus=modulus, fixed_strengths=strengths, support=support)))
+    return points, {"fixed particle strengths T_p / S_p (kPa)": "%.1f / %.1f" % (strengths[0] / 1e3, strengths[1] / 1e3)}
+
+
+def sweep_points(work):
+    points = []
+    keels = {}
+    for porosity in (0.30, 0.35, 0.40, 0.45):
+        keels[porosity] = compacted_keel(work, porosity)
+    for bond_set in ("2min", "4h", "ultimate"):
+        points.append(({"set": bond_set, "target porosity": 0.35},
+                       dict(run=os.path.join(work, "sweep", f"set_{bond_set}"), stage=keels[0.35][0], speed=0.0125,
+                            bond_set=bond_set)))
+    for porosity, (stage, info) in keels.items():
+        row = {"set": "4h", "target porosity": porosity}
+        if stage is None:
+            points.append((row, {"refused": info}))
+        elif porosity != 0.35:
+            points.append((row, dict(run=os.path.join(work, "sweep", f"porosity_{porosity:g}"), stage=stage,
+                                     speed=0.0125)))
+    extra = {f"keel compacted to {p:g}": ("settled %.3f, closed to %.3f, %.3f held at the hold pressure when bonded"
+                                          % (info["settled"], info["closed"], info["held"]))
+             if stage else f"refused: {info}" for p, (stage, info) in keels.items()}
+    return points, extra
+
+
+COLUMNS = ["peak_N", "travel_at_peak_mm", "freeze_bonds", "broken_bonds", "first_travel_mm", "first_force_N",
+           "first_rise", "first_from_load_cm", "first_height", "first_mode", "bottom_centre_tension_share", "wall_s"]
+
+
+def fmt(v):
+    if v is None:
+        return ""
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("study", choices=("cause", "sweep"))
+    ap.add_argument("--work", default=os.path.join(CASE, "runs", "punchStudies"))
+    ap.add_argument("--jobs", type=iceCases.whole_number(1, 2), default=2)
+    ap.add_argument("--publish", action="store_true", help="run nothing; copy the study's files into ../results/")
+    a = ap.parse_args()
+    outputs = [os.path.join(a.work, f"{a.study}.{ext}") for ext in ("csv", "md", "png")]
+    if a.publish:
+        iceCases.publish_files(outputs, os.path.join(CASE, "results"),
+                               [f"punchStudy_{os.path.basename(p)}" for p in outputs])
+        return
+    os.makedirs(a.work, exist_ok=True)
+    points, extra = (cause_points if a.study == "cause" else sweep_points)(a.work)
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        futures = [(row, pool.submit(punch, **kw) if "run" in kw else None, kw) for row, kw in points]
+        results = []
+        for row, future, kw in futures:
+            results.append((row, future.result() if future else {"refused": kw["refused"]}, kw.get("run")))
+            print(row, results[-1][1], flush=True)
+    keys = list(points[0][0])
+    lines = [",".join(keys + COLUMNS)]
+    lines += [",".join([fmt(row[k]) for k in keys] + [fmt(r.get(c)) for c in COLUMNS]) for row, r, _ in results]
+    iceCases.write_atomically(outputs[0], "\n".join(lines) + "\n")
+    md = [f"Reduced punch, {a.study} (studies/punchStudies.py {a.study}; revision {iceCases.git_revision()})", ""]
+    md += [f"- {k}: {v}" for k, v in extra.items()] + [""]
+    md += ["| " + " | ".join(keys) + " | peak (N) at (mm) | freeze-bonds / broken | first freeze-bond failure: "
+           "travel (mm), force (N), rise, from load line (cm), height in keel, mode | bottom-centre tension share "
+           "of the first 10 |", "|" + "---|" * (len(keys) + 4)]
+    for row, r, _ in results:
+        if "refused" in r:
+            md.append("| " + " | ".join(fmt(row[k]) for k in keys) + f" | refused: {r['refused']} | | | |")
+            continue
+        first = ("%.2f, %.0f, x%.1f, %.0f, %.2f, %s" % (r["first_travel_mm"], r["first_force_N"], r["first_rise"] or 0,
+                                                         r["first_from_load_cm"], r["first_height"], r["first_mode"])
+                 if r["first_travel_mm"] is not None else "none broke")
+        md.append("| " + " | ".join(fmt(row[k]) for k in keys) + f" | {r['peak_N']:.0f} at {r['travel_at_peak_mm']:.1f} | "
+                  f"{r['freeze_bonds']} / {r['broken_bonds']} | {first} | {fmt(r['bottom_centre_tension_share'])} |")
+    iceCases.write_atomically(outputs[1], "\n".join(md) + "\n")
+    plot(outputs[2], results, keys, a.study)
+    print("\n".join(md))
+
+
+def plot(path, results, keys, study):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from breakageRecord import read_curve
+    fig, ax = plt.subplots(figsize=(10, 6))
+    for i, (row, r, run) in enumerate(results):
+        if "refused" in r:
+            continue
+        _, travel, force = read_curve(os.path.join(run, "postProcessing", "platenForce.csv"))
+        label = ", ".join(str(row[k]) for k in keys)
+        line, = ax.plot(1e3 * travel, force, lw=1, label=label, color=plt.cm.tab20(i % 20))
+        if r["first_travel_mm"] is not None:
+            ax.plot(r["first_travel_mm"], r["first_force_N"], "o", color=line.get_color())
+    ax.set(xlabel="platen travel (mm)", ylabel="platen force (N)",
+           title=f"reduced punch, {study}: dots = first freeze-bond failure")
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path + ".tmp.png", dpi=90)
+    os.replace(path + ".tmp.png", path)
+
+
+if __name__ == "__main__":
+    main()
