@@ -12,15 +12,16 @@ all), 60 mm of travel; its first freeze-bond failures come from postProcessing/b
           freeze-bonds' modulus (the ice's 195 MPa / c_f x the ice's 38.4 MPa / the reference
           punch's 2.81 MPa) and the ends (clamped / simple): 12 punches.
   sweep   the case's own freeze-bonds (2.81 MPa, strengths calibrated at that modulus) at
-          0.0125 m/s: the sets 2 min / 4 h / ultimate on the keel compacted to 0.35, and the
-          4 h set on keels compacted to 0.30 / 0.35 / 0.40 / 0.45 (each keel's porosity after the
-          plates back off is reported: a compacted heap springs back).
+          0.05 m/s: the sets 2 min / 4 h / ultimate on the settled heap and on the keel compacted
+          to 0.35, and the 4 h set on keels compacted to 0.30 / 0.40 / 0.45 (each keel's porosity
+          at bonding is reported: a compacted heap springs back when the lid backs off).
 
 Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
-marked). --publish copies the three into ../results/ as punchStudy_<study>.*.
+marked). --publish copies the three into ../results/ as punchStudy_<study>.* and the table
+into ../README.md (its generated block "punchStudy <study> table").
 
 usage: studies/punchStudies.py {cause,sweep} [--work DIR] [--jobs N] [--publish]
-       (default WORK runs/punchStudies; cause about 5 min, sweep about 15 min on 2 cores)"""
+       (default WORK runs/punchStudies; each about 6 min on 2 cores)"""
 import argparse
 import concurrent.futures
 import json
@@ -154,17 +155,21 @@ def sweep_points(work):
     keels = {}
     for porosity in (0.30, 0.35, 0.40, 0.45):
         keels[porosity] = compacted_keel(work, porosity)
+    settled = settled_keel(work)
     for bond_set in ("2min", "4h", "ultimate"):
-        points.append(({"set": bond_set, "target porosity": 0.35},
-                       dict(run=os.path.join(work, "sweep", f"set_{bond_set}"), stage=keels[0.35][0], speed=0.0125,
+        points.append(({"set": bond_set, "keel": "settled"},
+                       dict(run=os.path.join(work, "sweep", f"settled_{bond_set}"), stage=settled, speed=0.05,
+                            bond_set=bond_set)))
+        points.append(({"set": bond_set, "keel": "compacted to 0.35"},
+                       dict(run=os.path.join(work, "sweep", f"set_{bond_set}"), stage=keels[0.35][0], speed=0.05,
                             bond_set=bond_set)))
     for porosity, (stage, info) in keels.items():
-        row = {"set": "4h", "target porosity": porosity}
+        row = {"set": "4h", "keel": f"compacted to {porosity:g}"}
         if stage is None:
             points.append((row, {"refused": info}))
         elif porosity != 0.35:
             points.append((row, dict(run=os.path.join(work, "sweep", f"porosity_{porosity:g}"), stage=stage,
-                                     speed=0.0125)))
+                                     speed=0.05)))
     extra = {f"keel compacted to {p:g}": ("settled %.3f, closed to %.3f, %.3f held at the hold pressure when bonded"
                                           % (info["settled"], info["closed"], info["held"]))
              if stage else f"refused: {info}" for p, (stage, info) in keels.items()}
@@ -192,6 +197,8 @@ def main():
     if a.publish:
         iceCases.publish_files(outputs, os.path.join(CASE, "results"),
                                [f"punchStudy_{os.path.basename(p)}" for p in outputs])
+        iceCases.write_readme_section(os.path.join(CASE, "README.md"), f"punchStudy {a.study} table",
+                                      open(outputs[1]).read())
         return
     os.makedirs(a.work, exist_ok=True)
     points, extra = (cause_points if a.study == "cause" else sweep_points)(a.work)
@@ -225,24 +232,31 @@ def main():
 
 
 def plot(path, results, keys, study):
+    """Force against travel, one row per value of the first key; left the whole travel, right its
+    first 6 mm (where the first freeze-bond fails: the dots)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from breakageRecord import read_curve
-    fig, ax = plt.subplots(figsize=(10, 6))
+    groups = list(dict.fromkeys(str(row[keys[0]]) for row, r, _ in results if "refused" not in r))
+    fig, axes = plt.subplots(len(groups), 2, figsize=(12, 3.6 * len(groups)), squeeze=False,
+                             gridspec_kw={"width_ratios": [2, 1]})
     for i, (row, r, run) in enumerate(results):
         if "refused" in r:
             continue
         _, travel, force = read_curve(os.path.join(run, "postProcessing", "platenForce.csv"))
-        label = ", ".join(str(row[k]) for k in keys)
-        line, = ax.plot(1e3 * travel, force, lw=1, label=label, color=plt.cm.tab20(i % 20))
-        if r["first_travel_mm"] is not None:
-            ax.plot(r["first_travel_mm"], r["first_force_N"], "o", color=line.get_color())
-    ax.set(xlabel="platen travel (mm)", ylabel="platen force (N)",
-           title=f"reduced punch, {study}: dots = first freeze-bond failure")
-    ax.legend(fontsize=7, ncol=2)
+        label = ", ".join(str(row[k]) for k in keys[1:])
+        for ax in axes[groups.index(str(row[keys[0]]))]:
+            line, = ax.plot(1e3 * travel, force, lw=0.8, label=label, color=plt.cm.tab10(i % 10))
+            if r["first_travel_mm"] is not None:
+                ax.plot(r["first_travel_mm"], r["first_force_N"], "o", ms=6, color=line.get_color())
+    for group, (whole, start) in zip(groups, axes):
+        whole.set(xlabel="platen travel (mm)", ylabel="platen force (N)", title=f"{keys[0]}: {group}")
+        start.set(xlim=(0, 6), xlabel="platen travel (mm)", title="first 6 mm; dots: first freeze-bond failure")
+        whole.legend(fontsize=7)
+    fig.suptitle(f"reduced punch, {study} (studies/punchStudies.py)")
     fig.tight_layout()
-    fig.savefig(path + ".tmp.png", dpi=90)
+    fig.savefig(path + ".tmp.png", dpi=80)
     os.replace(path + ".tmp.png", path)
 
 
