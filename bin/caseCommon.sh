@@ -5,6 +5,10 @@
 
 caseCommonSource="$(cd "$(dirname "${BASH_SOURCE[0]}")/../cases/common" && pwd)"
 
+# An input error ends every rank with the application's own message and status 1; without this
+# mpirun adds a banner about "1 process returned a non-zero exit code" that reads like a crash.
+export OMPI_MCA_orte_execute_quiet=1
+
 # copy_case_common COPY: cases/common copied to COPY/../common (COPY is the
 # copied case folder, which must exist); nothing to do when that is cases/common.
 copy_case_common() {

@@ -209,8 +209,9 @@ def small_rubble_case(source, path, length, width, thickness, max_time, tilt, en
 def run_app(app, case, ranks=1, args=(), log_name="log.run"):
     """Runs an application on a case; returns the wall time in s. Raises on failure."""
     # yield_when_idle: ranks that wait do not busy-spin a shared core (2 ranks on 2 busy cores).
+    # execute_quiet: an input error reads as the application's message alone (bin/caseCommon.sh)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_mpi_yield_when_idle="1")
+               OMPI_MCA_mpi_yield_when_idle="1", OMPI_MCA_orte_execute_quiet="1")
     exe = os.path.join(BUILD, "demModels", app) if not os.path.isabs(app) else app
     cmd = ["mpirun", "-np", str(ranks), "--oversubscribe", exe, "-case", case, *map(str, args)]
     start = time.time()

@@ -306,16 +306,19 @@ def pull_up(work, bin_dir, strength_set):
 
 def bad_input(work, bin_dir):
     app = os.path.join(bin_dir, "ridgeDEM")
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # the MPI environment of every Allrun (bin/caseCommon.sh): mpirun adds no banner of its own
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_orte_execute_quiet="1")
 
-    def expect(name, edit, words):
+    def expect(name, edit, words, ranks=1):
         case = ridge_case("keelBond", os.path.join(work, "bad", name), work)
         edit(os.path.join(case, "constant", "ridgeProperties"))
-        r = subprocess.run(["mpirun", "-np", "1", "--oversubscribe", app, "-case", case, "-stage", "assemble"],
+        r = subprocess.run(["mpirun", "-np", str(ranks), "--oversubscribe", app, "-case", case, "-stage", "assemble"],
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
         out = r.stdout
-        # 1: an input error, reported once, without MPI_Abort's banner
-        check(r.returncode == 1 and "MPI_ABORT" not in out and all(w in out for w in words),
+        # 1: an input error, reported once, without MPI_Abort's or mpirun's banner
+        check(r.returncode == 1 and "MPI_ABORT" not in out and "non-zero exit" not in out
+              and out.count("FATAL INPUT ERROR") == 1 and all(w in out for w in words),
               f"{name}: exit {r.returncode}, message names {words}: "
               + next((line for line in out.splitlines() if words[0] in line), out[-300:]).strip())
 
@@ -339,6 +342,8 @@ def bad_input(work, bin_dir):
     open(truncated, "wb").write(open(keel_file(work), "rb").read()[:4000])
     expect("truncatedKeel", lambda p: iceCases.set_entry(p, "keel.settledRubble", f'"{truncated}"'),
            ["truncatedKeel.h5", "truncated"])
+    expect("truncatedKeelTwoRanks", lambda p: iceCases.set_entry(p, "keel.settledRubble", f'"{truncated}"'),
+           ["truncatedKeel.h5", "truncated"], ranks=2)
     foreign = os.path.join(bad, "breakageRecord.h5")
     with h5py.File(foreign, "w") as f:
         f.create_group("breaks").create_dataset("time", data=np.zeros(3))

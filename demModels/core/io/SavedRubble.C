@@ -190,6 +190,19 @@ SavedRubble SavedRubble::read(const std::string& path, const std::string& expect
     {
         throw InputError(path, "(file)", "is not an HDF5 file, or is truncated: not a saved stage of this program");
     }
+    {
+        QuietHdf5Errors quiet;
+        const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        if (file < 0)
+        {
+            // The signature is there but the file ends before what its superblock promises.
+            throw InputError(path, "(file)", "is truncated or damaged: it begins as an HDF5 file ("
+                + std::to_string(std::filesystem::file_size(path)) + " bytes) but HDF5 cannot open it;"
+                " stages are written whole (a temporary file, then renamed), so a copy or a full disk"
+                " cut this one short: copy it again or rebuild the stage");
+        }
+        H5Fclose(file);
+    }
     SavedRubble r;
     try
     {
