@@ -10,14 +10,21 @@ water (demVariables pushDepth, pushSpeed) and held. From a finished run:
     buoyancy rho_w g V_sub(h) of its submerged volume at rest.
 
     /usr/bin/python3 tankCheck.py CASE [--check] [--rise-tolerance 0.02] [--force-tolerance 0.01]
+    /usr/bin/python3 tankCheck.py --run under|through [--np N] [--publish]
 
 Writes CASE/postProcessing/tank.json; with --check exits 1 when either is off by
-more than its tolerance."""
+more than its tolerance. --run makes the case first (../runs/tank_MODE): the
+water 5 cm below the block, which is pushed down at 0.1 m/s by 0.40 m (under:
+its top ends 14 cm below the level) or 0.15 m (through: it ends through the
+surface, half submerged), 7 s in all; --publish copies its tank.json to
+results/tank_MODE.json."""
 import argparse
 import csv
 import json
 import math
 import os
+import shutil
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "postProcessing"))
@@ -89,14 +96,42 @@ def analyse(case):
     return s
 
 
+def make_and_run(mode, np):
+    here = os.path.dirname(os.path.abspath(__file__))
+    case = os.path.join(here, "..", "runs", f"tank_{mode}")
+    shutil.rmtree(case, ignore_errors=True)
+    os.makedirs(case)
+    for d in ("0", "constant", "system", "DEM"):
+        shutil.copytree(os.path.join(here, d), os.path.join(case, d))
+    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+    for f, entry, value in (("constant/couplingProperties", "vof/initialLevel", "-0.05"),
+                            ("constant/couplingProperties", "demVariables/pushDepth", "0.4" if mode == "under" else "0.15"),
+                            ("constant/couplingProperties", "demVariables/pushSpeed", "0.1"),
+                            ("system/controlDict", "endTime", "7"), ("system/controlDict", "writeInterval", "7")):
+        subprocess.run(["foamDictionary", "-entry", entry, "-set", value, os.path.join(case, f)],
+                       check=True, stdout=subprocess.DEVNULL, env=env)
+    subprocess.run([os.path.join(here, "Allrun"), "-np", str(np), "-case", case], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+    return case
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case")
+    ap.add_argument("case", nargs="?")
+    ap.add_argument("--run", choices=("under", "through"))
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--publish", action="store_true")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--rise-tolerance", type=float, default=0.02)
     ap.add_argument("--force-tolerance", type=float, default=0.01)
     args = ap.parse_args()
-    s = analyse(args.case)
+    if (args.case is None) == (args.run is None):
+        ap.error("give a CASE or --run MODE")
+    case = make_and_run(args.run, args.np) if args.run else args.case
+    s = analyse(case)
+    if args.publish and args.run:
+        results = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
+        write_atomically(os.path.join(results, f"tank_{args.run}.json"), json.dumps(dict(s, ranks=args.np), indent=2) + "\n")
     print(f"level rise {1e3 * s['level_rise_m']:.3f} mm against {1e3 * s['expected_level_rise_m']:.3f} mm "
           f"({100 * s['level_rise_error']:+.2f} %); pressure force {s['pressure_force_N']:.3f} N against buoyancy "
           f"{s['buoyancy_N']:.3f} N ({100 * s['pressure_force_error']:+.3f} %); ice {100 * s['submerged_share_of_ice']:.1f} % "

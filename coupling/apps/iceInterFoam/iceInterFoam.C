@@ -79,7 +79,7 @@ int main(int argc, char *argv[])
     #include "createFields.H"
 
     const freeSurface surface(mesh);
-    const courantLimits limits(runTime.controlDict());
+    const courantLimits limits(runTime.controlDict(), couplingProperties);
     {
         const scalar level = vofProperties.get<scalar>("initialLevel");
         if (level <= surface.bottom() || level >= surface.top())
