@@ -29,7 +29,14 @@ expectRefusal() {
         foamDictionary -entry "${setting%%=*}" -set "${setting#*=}" "$dir/$file" > /dev/null
     done
     blockMesh -case "$dir" > "$dir/log.blockMesh" 2>&1
-    "$app" -case "$dir" > "$dir/log.iceFoam" 2>&1
+    if [ -n "${ranks:-}" ]; then    # decomposed as system/decomposeParDict says
+        foamDictionary -entry numberOfSubdomains -set "$ranks" "$dir/system/decomposeParDict" > /dev/null
+        decomposePar -case "$dir" > "$dir/log.decomposePar" 2>&1
+        OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+            mpirun -np "$ranks" --oversubscribe "$app" -case "$dir" -parallel > "$dir/log.iceFoam" 2>&1
+    else
+        "$app" -case "$dir" > "$dir/log.iceFoam" 2>&1
+    fi
     local rc=$?
     if [ $rc -eq 0 ]; then
         echo "FAIL $name: accepted (exit 0)"; failures=$((failures + 1))
@@ -57,6 +64,8 @@ if [ "$checks" = vof ]; then
         "$props:demVariables/radius=0.08" "$props:demVariables/demTimeStep=1e-4"
     expectRefusal gravitySideways "needs gravity along -z" "constant/g:value=(0 -9.81 0)"
     expectRefusal badWaveDamping "vof/waveDamping" "$props:vof/waveDamping/width=0"
+    ranks=2 expectRefusal columnCutByRanks "the decomposition cuts a vertical column of cells" \
+        "system/decomposeParDict:coeffs/n=(1 1 2)"
     exit $failures
 fi
 if [ "$checks" = bondedIce ]; then
