@@ -96,7 +96,7 @@ int main(int argc, char *argv[])
             mixture.correct();
             rho == alpha1*rho1 + alpha2*rho2;
             rhoPhi = fvc::interpolate(rho)*phi;
-            p_rgh = p - rho*gh;
+            p = p_rgh + rho*gh;
         }
     }
     const volScalarField waveDamping(waveDampingRate(mesh, vofProperties));
