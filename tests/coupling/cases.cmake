@@ -145,7 +145,7 @@ set_tests_properties(floatingBlockCfd_badInput PROPERTIES TIMEOUT 300 ENVIRONMEN
 # The same small, soft block at the vof level (cases/floatingBlock/vof,
 # iceInterFoam): water and air, the surface free to move. The same checks
 # (the level now that of the columns no particle reaches), 1 and 2 ranks the
-# same trajectories (measured 1.4e-7 m of 0.025 m travelled).
+# same trajectories (measured 1.2e-7 m of 0.025 m travelled).
 foreach(np 1 2)
   add_test(NAME floatingBlockVofSmall_np${np}
     COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceInterFoam>
