@@ -62,6 +62,8 @@ if [ "$checks" = vof ]; then
     expectRefusal courantExceeded "above entry 'maxCo' = 0.001" "$control:maxCo=0.001"
     expectRefusal cellsSmallerThanParticles "is smaller than the largest particle" \
         "$props:demVariables/radius=0.08" "$props:demVariables/demTimeStep=1e-4"
+    expectRefusal cellsThinnerThanARadius "less than the largest particle's radius" \
+        "system/blockMeshDict:blocks=(hex (0 1 2 3 4 5 6 7) (8 6 36) simpleGrading (1 1 1))"
     expectRefusal gravitySideways "needs gravity along -z" "constant/g:value=(0 -9.81 0)"
     expectRefusal badWaveDamping "vof/waveDamping" "$props:vof/waveDamping/width=0"
     ranks=2 expectRefusal columnCutByRanks "the decomposition cuts a vertical column of cells" \

@@ -116,7 +116,7 @@ int main(int argc, char *argv[])
         << " s): " << interval.fluidSteps() << " fluid step(s) per coupling step" << nl << endl;
 
     std::vector<::iceCoupling::CouplingParticle> particles(dem.gatherAll());
-    checkCellsHoldParticles(mesh, couplingProperties, particles);
+    checkCellsHoldParticles(mesh, surface, couplingProperties, particles);
     particleFluidCoupling coupling
     (
         mesh, couplingProperties, rho1.value(), gAverage(mixture.nuModel1().nu()().primitiveField()),
