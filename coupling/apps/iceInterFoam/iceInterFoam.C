@@ -89,7 +89,7 @@ int main(int argc, char *argv[])
                 << " inside the mesh, between its bottom z = " << surface.bottom() << " and top z = "
                 << surface.top() << " m (system/blockMeshDict), with air above it" << exit(FatalIOError);
         }
-        if (runTime.timeIndex() == 0 && runTime.value() == runTime.startTime().value())
+        if (runTime.timeName() == "0")   // a run from a later time keeps its alpha.water
         {
             surface.setLevel(alpha1, level);
             alpha2 = 1.0 - alpha1;
