@@ -17,8 +17,7 @@ freeSurface::freeSurface(const fvMesh& mesh)
     top_(mesh.bounds().max().z()),
     planArea_(0),
     cellBottom_(mesh.nCells()),
-    cellHeight_(mesh.nCells()),
-    columnOf_(mesh.nCells(), -1)
+    cellHeight_(mesh.nCells())
 {
     const pointField& points = mesh.points();
     forAll(cellBottom_, celli)
@@ -77,7 +76,6 @@ freeSurface::freeSurface(const fvMesh& mesh)
         forAll(cells, k)
         {
             cells[k] = column.second[k].second;
-            columnOf_[cells[k]] = columni;
         }
         planArea_ += mesh.V()[cells[0]]/cellHeight_[cells[0]];
         ++columni;
