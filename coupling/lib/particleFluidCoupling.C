@@ -49,7 +49,7 @@ particleFluidCoupling::particleFluidCoupling
     drag_(dragModel::New(couplingProperties)),
     fraction_(fluidFractionModel::New(couplingProperties)),
     momentum_(momentumCouplingModel::New(couplingProperties)),
-    locator_(mesh, fraction_()),
+    locator_(mesh, fraction_(), couplingProperties),
     surface_(mesh, couplingProperties),
     smoothing_(mesh, couplingProperties),
     alpha_(fieldIO(mesh, "alpha", true), mesh, dimensionedScalar("one", dimless, 1.0),
@@ -93,6 +93,30 @@ particleFluidCoupling::particleFluidCoupling
             << "fluid density " << rho_ << " and viscosity " << nu_ << " must be positive"
             << exit(FatalError);
     }
+}
+
+
+void particleFluidCoupling::setMixture
+(
+    const volScalarField& rho, const volScalarField& nu, scalar rhoWater, scalar g
+)
+{
+    if (surface_.active())
+    {
+        FatalErrorInFunction
+            << "a flat water surface (entry waterLevel) and a moving one (hydrodynamics vof)"
+            << " exclude each other" << exit(FatalError);
+    }
+    mixtureRho_ = &rho;
+    mixtureNu_ = &nu;
+    rhoWater_ = rhoWater;
+    gravity_ = g;
+}
+
+
+void particleFluidCoupling::setWaterHeight(const scalarField& columnHeight)
+{
+    columnHeight_ = &columnHeight;
 }
 
 
@@ -210,6 +234,26 @@ std::vector<double> particleFluidCoupling::atParticles
 }
 
 
+std::vector<double> particleFluidCoupling::scalarsAtParticles
+(
+    label nParticles, const UPtrList<const scalarField>& fields
+) const
+{
+    const label width = fields.size();
+    std::vector<double> values(width*nParticles, 0.0);
+    for (const particleSample& s : locator_.samples())
+    {
+        double* row = &values[width*s.particle];
+        for (label k = 0; k < width; ++k)
+        {
+            row[k] += s.share*fields[k][s.cell];
+        }
+    }
+    sumOverRanks(values);
+    return values;
+}
+
+
 void particleFluidCoupling::updateExchange
 (
     const std::vector<::iceCoupling::CouplingParticle>& particles,
@@ -221,6 +265,15 @@ void particleFluidCoupling::updateExchange
     K_.setSize(n);
     exchangeFluidVelocity_.setSize(n);
     std::vector<double> alphaAtParticle(n);
+    rhoAtParticle_.setSize(n, rho_);
+    std::vector<double> mixture;
+    if (mixtureRho_)
+    {
+        UPtrList<const scalarField> fields(2);
+        fields.set(0, &mixtureRho_->primitiveField());
+        fields.set(1, &mixtureNu_->primitiveField());
+        mixture = scalarsAtParticles(n, fields);
+    }
     for (label i = 0; i < n; ++i)
     {
         const double* row = &atParticle[4*i];
@@ -228,7 +281,12 @@ void particleFluidCoupling::updateExchange
         alphaAtParticle[i] = row[0];
         exchangeFluidVelocity_[i] = vector(row[1], row[2], row[3]);
         const vector slip = exchangeFluidVelocity_[i] - toVector(p.velocity);
-        K_[i] = wetFraction_[i]*drag_->K({p.diameter, row[0], mag(slip), rho_, nu_});
+        const scalar nu = mixtureRho_ ? mixture[2*i + 1] : nu_;
+        if (mixtureRho_)
+        {
+            rhoAtParticle_[i] = mixture[2*i];
+        }
+        K_[i] = wetFraction_[i]*drag_->K({p.diameter, row[0], mag(slip), rhoAtParticle_[i], nu});
     }
     checkStability(particles, alphaAtParticle);
 
@@ -242,12 +300,13 @@ void particleFluidCoupling::updateExchange
     const bool addedMassKnown = addedMassForce_.size() == n;
     for (const particleSample& s : locator_.samples())
     {
-        const scalar k = s.share*K_[s.particle]/(rho_*V[s.cell]);
+        const scalar rhoCell = mixtureRho_ ? (*mixtureRho_)[s.cell] : rho_;
+        const scalar k = s.share*K_[s.particle]/(rhoCell*V[s.cell]);
         Ksl[s.cell] += k;
         KslUs[s.cell] += k*toVector(particles[s.particle].velocity);
         if (addedMassKnown)
         {
-            KslUs[s.cell] -= s.share/(rho_*V[s.cell])*addedMassForce_[s.particle];
+            KslUs[s.cell] -= s.share/(rhoCell*V[s.cell])*addedMassForce_[s.particle];
         }
     }
     Ksl_.correctBoundaryConditions();
@@ -273,6 +332,18 @@ void particleFluidCoupling::updateForces
     }
     const std::vector<double> fluidVelocity(atParticles(n, U, false));
     const std::vector<double> pressureGradient(atParticles(n, gradp, false));
+    std::vector<double> waterHeight;
+    if (mixtureRho_)
+    {
+        if (!columnHeight_)
+        {
+            FatalErrorInFunction << "vof level: no water height set" << abort(FatalError);
+        }
+        UPtrList<const scalarField> fields(1);
+        fields.set(0, columnHeight_);
+        waterHeight = scalarsAtParticles(n, fields);
+        submergedVolume_.setSize(n);
+    }
 
     forces_.assign(n, {0.0, 0.0, 0.0});
     addedMassForce_.setSize(n);
@@ -290,8 +361,21 @@ void particleFluidCoupling::updateForces
           ? vector(fluidVelocity[3*i], fluidVelocity[3*i + 1], fluidVelocity[3*i + 2])
           : exchangeFluidVelocity_[i];
         const vector drag = K_[i]*(Uf - toVector(p.velocity));
-        const vector pressure = -rho_*wetFraction_[i]*volumeOf(p)
-            *vector(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
+        const vector gradient(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
+        vector pressure(Zero);
+        if (mixtureRho_)
+        {
+            // The hydrostatic part exactly on the cap under the water height
+            // of the particle's columns; the dynamic part on the same volume.
+            const scalar r = 0.5*p.diameter;
+            const scalar h = min(max(waterHeight[i] - (p.position[2] - r), scalar(0)), 2*r);
+            submergedVolume_[i] = constant::mathematical::pi*sqr(h)*(3*r - h)/3;
+            pressure = submergedVolume_[i]*(vector(0, 0, rhoWater_*gravity_) - gradient);
+        }
+        else
+        {
+            pressure = -rho_*wetFraction_[i]*volumeOf(p)*gradient;
+        }
         addedMassForce_[i] = addedMass(p, Uf, i);
         const vector total = drag + pressure + addedMassForce_[i];
         forces_[i] = {total.x(), total.y(), total.z()};
@@ -340,7 +424,7 @@ void particleFluidCoupling::checkStability
         {
             continue;   // out of the water
         }
-        const scalar b = K_[i]*(1 - alpha)/(alpha*rho_*wetFraction_[i]*volumeOf(p));
+        const scalar b = K_[i]*(1 - alpha)/(alpha*rhoAtParticle_[i]*wetFraction_[i]*volumeOf(p));
         const scalar factor = mag(momentum_->slipGrowthFactor(couplingTime_, a, b));
         if (factor > worstFactor)
         {
@@ -381,18 +465,22 @@ vector particleFluidCoupling::addedMass
     {
         return Zero;
     }
-    return addedMassCoefficient_*rho_*wetFraction_[index]*volumeOf(p)
+    return addedMassCoefficient_*rhoAtParticle_[index]*wetFraction_[index]*volumeOf(p)
           *(currentSlip_[index] - previousSlip_[index])/couplingTime_;
 }
 
 
 vector particleFluidCoupling::fluidExchangeTotal(const volVectorField& U) const
 {
+    const scalarField rhoV
+    (
+        mixtureRho_ ? scalarField(mixtureRho_->primitiveField()*mesh_.V()) : scalarField(rho_*mesh_.V())
+    );
     if (momentum_->implicitInFluid())
     {
-        return rho_*gSum(mesh_.V()*(KslUs_.primitiveField() - Ksl_.primitiveField()*U.primitiveField()));
+        return gSum(rhoV*(KslUs_.primitiveField() - Ksl_.primitiveField()*U.primitiveField()));
     }
-    return rho_*gSum(mesh_.V()*explicitForce_.primitiveField());
+    return gSum(rhoV*explicitForce_.primitiveField());
 }
 
 } // namespace iceCoupling

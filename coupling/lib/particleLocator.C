@@ -7,11 +7,42 @@ namespace Foam
 namespace iceCoupling
 {
 
-particleLocator::particleLocator(const fvMesh& mesh, const fluidFractionModel& model)
+particleLocator::particleLocator
+(
+    const fvMesh& mesh, const fluidFractionModel& model, const dictionary& couplingProperties
+)
 :
     mesh_(mesh),
-    model_(model)
+    model_(model),
+    verticalSharing_(false)
 {
+    const word sharing(couplingProperties.getOrDefault<word>("verticalSharing", "none"));
+    if (sharing != "none" && sharing != "linear")
+    {
+        FatalIOErrorInFunction(couplingProperties)
+            << "entry 'verticalSharing' is '" << sharing << "': none or linear"
+            << exit(FatalIOError);
+    }
+    verticalSharing_ = sharing == "linear";
+    if (verticalSharing_)
+    {
+        above_.setSize(mesh.nCells(), -1);
+        below_.setSize(mesh.nCells(), -1);
+        const vectorField& Sf = mesh.faceAreas();
+        const vectorField& C = mesh.cellCentres();
+        for (label facei = 0; facei < mesh.nInternalFaces(); ++facei)
+        {
+            if (mag(Sf[facei].z()) < 0.99*mag(Sf[facei]))
+            {
+                continue;
+            }
+            const label own = mesh.faceOwner()[facei], nei = mesh.faceNeighbour()[facei];
+            const bool ownBelow = C[own].z() < C[nei].z();
+            (ownBelow ? above_[own] : below_[own]) = nei;
+            (ownBelow ? below_[nei] : above_[nei]) = own;
+        }
+    }
+
     // Built on demand with parallel communication: build them here, on every
     // rank, since only ranks with particles nearby would ask for them later.
     mesh_.tetBasePtIs();
@@ -61,6 +92,25 @@ label particleLocator::sampleCell(const point& p, label centreCell) const
         }
     }
     return mesh_.findCell(p, polyMesh::CELL_TETS);
+}
+
+
+void particleLocator::addSample(label particle, label cell, scalar z, scalar share)
+{
+    if (verticalSharing_)
+    {
+        const scalar zc = mesh_.cellCentres()[cell].z();
+        const label neighbour = z >= zc ? above_[cell] : below_[cell];
+        if (neighbour >= 0)
+        {
+            const scalar w =
+                min(mag(z - zc)/mag(mesh_.cellCentres()[neighbour].z() - zc), scalar(0.5));
+            samples_.append(particleSample{particle, cell, (1 - w)*share});
+            samples_.append(particleSample{particle, neighbour, w*share});
+            return;
+        }
+    }
+    samples_.append(particleSample{particle, cell, share});
 }
 
 
@@ -133,13 +183,14 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
         }
         for (label s = 0; s < nSamples; ++s)
         {
+            const scalar z = particles[i].position[2] + particles[i].diameter*offsets[s].z();
             if (o[1 + s] == myRank)
             {
-                samples_.append(particleSample{i, cellOfSample[i*nSamples + s], shares[s]});
+                addSample(i, cellOfSample[i*nSamples + s], z, shares[s]);
             }
             else if (o[1 + s] == nobody && o[0] == myRank)
             {
-                samples_.append(particleSample{i, centreCell_[i], shares[s]});
+                addSample(i, centreCell_[i], z, shares[s]);
             }
         }
     }

@@ -49,9 +49,14 @@ SCRIPTS = {
          (["-thickness", "0.1"], "-thickness"), (["-quick", "1"], "1")],
         [[], ["-smoke"], ["-quick", "-np", "1", "-platenSpeed", "0.1", "-steps", "10"], ["-publish"]]),
     "cases/floatingBlock/Allrun": (
-        [(["-level", "x"], "-level"), (["-level"], "-level"), (["-level", "cfd", "-np", "0"], "-np")],
-        [[], ["-level", "cfd", "-smoke", "-np", "1"], ["-level", "hydrostatic", "-np", "2"], ["-level", "cfd", "-publish"]]),
+        [(["-level", "x"], "-level"), (["-level"], "-level"), (["-level", "cfd", "-np", "0"], "-np"),
+         (["-water", "sph"], "-water"), (["-water"], "-water")],
+        [[], ["-level", "cfd", "-smoke", "-np", "1"], ["-level", "hydrostatic", "-np", "2"], ["-level", "cfd", "-publish"],
+         ["-water", "vof", "-smoke", "-np", "1"], ["-water", "vof", "-publish"], ["-level", "vof", "-np", "2"]]),
     "cases/floatingBlock/cfd/Allrun": (
+        [(["-case"], "-case"), (["-case", "/nonexistent/case"], "-case")],
+        [[], ["-smoke"], ["-np", "2", "-case", "."], ["-publish"]]),
+    "cases/floatingBlock/vof/Allrun": (
         [(["-case"], "-case"), (["-case", "/nonexistent/case"], "-case")],
         [[], ["-smoke"], ["-np", "2", "-case", "."], ["-publish"]]),
     "cases/freezeBondShear/Allrun": ([], [[], ["-smoke"], ["-publish"]]),
@@ -92,6 +97,7 @@ ALLCLEANS = {
     "cases/packedBed/Allclean": [(["-bogus"], "-bogus"), (["a", "b"], "one case folder")],
     "cases/sphereSettling/Allclean": [(["-bogus"], "-bogus")],
     "cases/floatingBlock/cfd/Allclean": [(["-bogus"], "-bogus")],
+    "cases/floatingBlock/vof/Allclean": [(["-bogus"], "-bogus")],
 }
 
 STUB = "#!/bin/bash\ntouch \"$(dirname \"${BASH_SOURCE[0]}\")/../STUB_RAN\"\n"

@@ -3,6 +3,7 @@
 // between the particles and the cells, and bad set-ups are refused.
 #include "particleFluidCoupling.H"
 #include "couplingInterval.H"
+#include "freeSurface.H"
 #include "fvCFD.H"
 
 #include <gtest/gtest.h>
@@ -439,4 +440,137 @@ TEST_F(CouplingExchange, negativeSmoothingLengthRefused)
     dictionary props(properties("DiFelice", "divided", "semiImplicit"));
     props.add("smoothingLength", -0.01);
     expectFatal([&]() { particleFluidCoupling coupling(mesh(), props, rho, nu); }, "smoothingLength");
+}
+
+
+// The vof level (iceInterFoam): water below z = 0.25 m, air above, in the
+// 0.4 m box of 0.1 m cells.
+namespace
+{
+
+volScalarField uniformField(const fvMesh& mesh, const word& name, const dimensionSet& dims, scalar value)
+{
+    return volScalarField
+    (
+        IOobject(name, mesh.time().timeName(), mesh), mesh, dimensionedScalar(name, dims, value),
+        zeroGradientFvPatchScalarField::typeName
+    );
+}
+
+} // namespace
+
+
+TEST_F(CouplingExchange, vofFreeSurfaceSetsTheLevelAndReadsItBack)
+{
+    const freeSurface surface(mesh());
+    volScalarField alphaWater(uniformField(mesh(), "alpha.water", dimless, 0));
+    const volScalarField eps(uniformField(mesh(), "eps", dimless, 1));
+    surface.setLevel(alphaWater, 0.25);
+    EXPECT_NEAR(surface.planArea(), 0.16, 1e-14);
+    EXPECT_NEAR(surface.waterVolume(alphaWater, eps), 0.16*0.25, 1e-14);
+    EXPECT_NEAR(surface.freeLevel(alphaWater, eps), 0.25, 1e-14);
+    const tmp<Foam::scalarField> height(surface.columnHeight(alphaWater));
+    EXPECT_NEAR(gMin(height()), 0.25, 1e-14);
+    EXPECT_NEAR(gMax(height()), 0.25, 1e-14);
+    // The cell the surface cuts holds half water.
+    EXPECT_NEAR(gMax(alphaWater.primitiveField()*(1 - alphaWater.primitiveField())), 0.25, 1e-14);
+}
+
+
+TEST_F(CouplingExchange, vofBuoyancyOfTheCapUnderTheColumnsWaterHeight)
+{
+    // Still water: no dynamic pressure gradient. Centre at the surface: half
+    // the volume; 5 mm below with r = 10 mm: a cap 15 mm high; above by 20 mm:
+    // nothing; deep: all of it. Drag: none at rest.
+    const freeSurface surface(mesh());
+    volScalarField alphaWater(uniformField(mesh(), "alpha.water", dimless, 0));
+    surface.setLevel(alphaWater, 0.25);
+    const volScalarField rhoMix("rho", alphaWater*dimensionedScalar("rw", dimDensity, 1000.0)
+        + (1 - alphaWater)*dimensionedScalar("ra", dimDensity, 1.0));
+    const volScalarField nuMix(uniformField(mesh(), "nu", dimViscosity, 1e-6));
+    dictionary props(properties("SchillerNaumann", "divided", "semiImplicit"));
+    props.add("verticalSharing", "linear");
+    particleFluidCoupling coupling(mesh(), props, rho, nu);
+    coupling.setMixture(rhoMix, nuMix, 1000, 9.81);
+    const scalar r = 0.01;
+    const std::vector<CouplingParticle> particles
+    {
+        {1, {0.05, 0.05, 0.25}, {0, 0, 0}, 2*r},
+        {2, {0.15, 0.05, 0.245}, {0, 0, 0}, 2*r},
+        {3, {0.25, 0.05, 0.27}, {0, 0, 0}, 2*r},
+        {4, {0.35, 0.05, 0.1}, {0, 0, 0}, 2*r}
+    };
+    const auto U = vectorField("U", Zero);
+    const auto gradpd = vectorField("gradpd", Zero);
+    const tmp<Foam::scalarField> height(surface.columnHeight(alphaWater));
+    coupling.updateFluidFraction(particles);
+    coupling.updateExchange(particles, U);
+    coupling.setWaterHeight(height());
+    coupling.updateForces(particles, U, gradpd);
+    const scalar V = 4.0/3*constant::mathematical::pi*pow3(r);
+    const scalar h = 0.015;
+    const scalar cap = constant::mathematical::pi*sqr(h)*(3*r - h)/3;
+    const scalar expected[4] = {0.5*V, cap, 0, V};
+    for (int i = 0; i < 4; ++i)
+    {
+        EXPECT_NEAR(coupling.particleForces()[i][2], 1000*9.81*expected[i], 1e-12) << "particle " << i + 1;
+        EXPECT_NEAR(coupling.submergedVolume()[i], expected[i], 1e-16) << "particle " << i + 1;
+    }
+    // The particles take their whole volume from the fluid, air or water.
+    const scalar solid = gSum((1 - coupling.alpha().primitiveField())*mesh().V());
+    EXPECT_NEAR(solid/(4*V), 1.0, 1e-12);
+}
+
+
+TEST_F(CouplingExchange, vofDragFromTheLocalMixture)
+{
+    // A particle in the air cells gets the drag of air, one in the water cells
+    // that of water: each the same as at the cfd level in that fluid alone.
+    const freeSurface surface(mesh());
+    volScalarField alphaWater(uniformField(mesh(), "alpha.water", dimless, 0));
+    surface.setLevel(alphaWater, 0.2);
+    const volScalarField rhoMix("rho", alphaWater*dimensionedScalar("rw", dimDensity, 1000.0)
+        + (1 - alphaWater)*dimensionedScalar("ra", dimDensity, 1.0));
+    const volScalarField nuMix("nu", alphaWater*dimensionedScalar("nw", dimViscosity, 1e-6)
+        + (1 - alphaWater)*dimensionedScalar("na", dimViscosity, 1.5e-5));
+    const dictionary props(properties("SchillerNaumann", "centre", "semiImplicit"));
+    const std::vector<CouplingParticle> inAir{{1, {0.05, 0.05, 0.35}, {0.1, 0, 0}, 0.01}};
+    const std::vector<CouplingParticle> inWater{{1, {0.05, 0.05, 0.05}, {0.1, 0, 0}, 0.01}};
+    const auto U = vectorField("U", Zero);
+    const auto gradp = vectorField("gradp", Zero);
+    const tmp<Foam::scalarField> height(surface.columnHeight(alphaWater));
+    for (const auto& [particles, rhoAlone, nuAlone] :
+         {std::make_tuple(inAir, 1.0, 1.5e-5), std::make_tuple(inWater, 1000.0, 1e-6)})
+    {
+        particleFluidCoupling vof(mesh(), props, rho, nu);
+        vof.setMixture(rhoMix, nuMix, 1000, 9.81);
+        vof.setWaterHeight(height());
+        vof.update(particles, U, gradp);
+        particleFluidCoupling alone(mesh(), props, rhoAlone, nuAlone);
+        alone.update(particles, U, gradp);
+        EXPECT_NEAR(vof.totalDrag().x()/alone.totalDrag().x(), 1.0, 1e-12) << "rho " << rhoAlone;
+        // Equal and opposite on the fluid (per unit mass of the cell's mixture).
+        EXPECT_NEAR(vof.fluidExchangeTotal(U).x()/vof.totalDrag().x(), -1.0, 1e-12);
+    }
+}
+
+
+TEST_F(CouplingExchange, vofVerticalSharingMovesTheVolumeSmoothly)
+{
+    // A particle rising through the face at z = 0.2 m: with verticalSharing
+    // linear the solid volume of the cell below falls linearly with the
+    // particle's height (no jump at the face), the total is kept.
+    dictionary props(properties("SchillerNaumann", "centre", "semiImplicit"));
+    props.add("verticalSharing", "linear");
+    particleFluidCoupling coupling(mesh(), props, rho, nu);
+    const scalar d = 0.01, V = constant::mathematical::pi/6*pow3(d);
+    const label below = mesh().findCell(point(0.05, 0.05, 0.15));
+    for (const scalar z : {0.15, 0.175, 0.199999, 0.200001, 0.225, 0.25})
+    {
+        coupling.updateFluidFraction({{1, {0.05, 0.05, z}, {0, 0, 0}, d}});
+        const Foam::scalarField solid((1 - coupling.alpha().primitiveField())*mesh().V());
+        const scalar expectedBelow = V*min(max(0.5 - (z - 0.2)/0.1, 0.0), 1.0);
+        EXPECT_NEAR(solid[below], expectedBelow, 1e-9*V) << "z = " << z;
+        EXPECT_NEAR(sum(solid), V, 1e-15) << "z = " << z;
+    }
 }

@@ -141,3 +141,54 @@ add_test(NAME floatingBlockCfd_badInput
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/floatingBlock/cfd
           ${COUPLING_WORK}/badIceInput $<TARGET_FILE:iceFoam> bondedIce)
 set_tests_properties(floatingBlockCfd_badInput PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")
+
+# The same small, soft block at the vof level (cases/floatingBlock/vof,
+# iceInterFoam): water and air, the surface free to move. The same checks
+# (the level now that of the columns no particle reaches), 1 and 2 ranks the
+# same trajectories (measured 1.2e-7 m of 0.025 m travelled).
+foreach(np 1 2)
+  add_test(NAME floatingBlockVofSmall_np${np}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceInterFoam>
+            ${PROJECT_SOURCE_DIR}/cases/floatingBlock/vof ${COUPLING_WORK}/floatingBlockVof_np${np} ${np}
+            constant/couplingProperties:demVariables/spheresX=4
+            constant/couplingProperties:demVariables/spheresY=4
+            constant/couplingProperties:demVariables/layers=2
+            constant/couplingProperties:demVariables/releaseDepth=0.08
+            constant/couplingProperties:demVariables/demTimeStep=2.5e-4
+            constant/couplingProperties:couplingInterval=20
+            constant/iceProperties:material/youngsModulus=1.95e6
+            constant/iceProperties:bondFamilies/ice/youngsModulus=1.95e6
+            system/controlDict:endTime=4
+            system/controlDict:writeInterval=4)
+  set_tests_properties(floatingBlockVofSmall_np${np} PROPERTIES
+    FIXTURES_SETUP floatingBlockVof_np${np} TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${FOAM_ENV}")
+  add_test(NAME floatingBlockVofSmall_draft_np${np}
+    COMMAND ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/floatingBlock/cfd/draftFromParticles.py
+            ${COUPLING_WORK}/floatingBlockVof_np${np} --ranks ${np} --check)
+  set_tests_properties(floatingBlockVofSmall_draft_np${np} PROPERTIES FIXTURES_REQUIRED floatingBlockVof_np${np})
+endforeach()
+add_test(NAME floatingBlockVofSmall_oneVsTwoRanks
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
+          ${COUPLING_WORK}/floatingBlockVof_np1 ${COUPLING_WORK}/floatingBlockVof_np2 --tolerance 1e-4)
+set_tests_properties(floatingBlockVofSmall_oneVsTwoRanks PROPERTIES
+  FIXTURES_REQUIRED "floatingBlockVof_np1;floatingBlockVof_np2")
+# Closed tank: the whole block pushed down from above the water at 0.2 m/s
+# until its top is 14 cm under and held there (vof/tankCheck.py): the level
+# rises by the ice's volume over the tank's area (within 2 %), the pressure
+# force on the ice equals its buoyancy (within 1 %); 1 and 2 ranks.
+foreach(np 1 2)
+  add_test(NAME floatingBlockVofTank_np${np}
+    COMMAND sh -c "\"$0\" \"$@\" && ${PYTHON} ${PROJECT_SOURCE_DIR}/cases/floatingBlock/vof/tankCheck.py ${COUPLING_WORK}/floatingBlockVofTank_np${np} --check"
+            ${CMAKE_CURRENT_SOURCE_DIR}/runIceFoam.sh $<TARGET_FILE:iceInterFoam>
+            ${PROJECT_SOURCE_DIR}/cases/floatingBlock/vof ${COUPLING_WORK}/floatingBlockVofTank_np${np} ${np}
+            constant/couplingProperties:vof/initialLevel=-0.05
+            constant/couplingProperties:demVariables/pushDepth=0.4
+            constant/couplingProperties:demVariables/pushSpeed=0.2
+            system/controlDict:endTime=4
+            system/controlDict:writeInterval=4)
+  set_tests_properties(floatingBlockVofTank_np${np} PROPERTIES TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${FOAM_ENV}")
+endforeach()
+add_test(NAME floatingBlockVof_badInput
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/badInput.sh ${PROJECT_SOURCE_DIR}/cases/floatingBlock/vof
+          ${COUPLING_WORK}/badVofInput $<TARGET_FILE:iceInterFoam> vof)
+set_tests_properties(floatingBlockVof_badInput PROPERTIES TIMEOUT 300 ENVIRONMENT "${FOAM_ENV}")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Floating block at the cfd level (iceFoam): draft, submerged volume fraction,
+"""Floating block at the cfd level (iceFoam) or the vof level (iceInterFoam): draft, submerged volume fraction,
 kinetic energy and drift from postProcessing/particles.csv, written as the
 hydrostatic case writes them (postProcessing/draft.csv, summary.json), so that
 ../plotDraft.py draws both. With --check, fails (exit 1) unless the submerged
@@ -10,7 +10,9 @@ drifted more than --max-drift, and has every bond it started with.
 
 Kinetic energy is the translational one (particles.csv has no spin); at rest:
 below restKineticEnergy M g H (system/controlDict) for restDuration s up to
-the end of the run."""
+the end of the run. At the vof level the water level is that of the columns
+no particle reaches (postProcessing/vof.csv, the latest row at or before each
+logged time), and the summary adds its rise and the water volume's change."""
 import argparse
 import csv
 import json
@@ -54,18 +56,36 @@ def samples(case):
     return [(t, list(by_time[t].values())) for t in sorted(by_time)]
 
 
+def vof_levels(case):
+    """(time, level, water volume change) rows of postProcessing/vof.csv."""
+    with open(os.path.join(case, "postProcessing", "vof.csv")) as f:
+        return [(float(r["time"]), float(r["level"]), float(r["waterVolumeChange"])) for r in csv.DictReader(f)]
+
+
+def level_at(levels, t):
+    """The level of the latest row at or before t (rows sorted by time)."""
+    best = levels[0]
+    for row in levels:
+        if row[0] <= t + 1e-9:
+            best = row
+    return best[1]
+
+
 def analyse(case, ranks, wall):
     props = os.path.join(case, "constant", "couplingProperties")
     control = os.path.join(case, "system", "controlDict")
-    level = number(props, "waterLevel")
+    vof = get_entry(props, "hydrodynamics").strip() == "vof"
+    levels = vof_levels(case) if vof else None
+    fixed_level = None if vof else number(props, "waterLevel")
     layers = int(number(props, "demVariables.layers"))
-    rho_w = number(os.path.join(case, "constant", "transportProperties"), "rho")
+    rho_w = number(os.path.join(case, "constant", "transportProperties"), "water.rho" if vof else "rho")
     rho_i = number(os.path.join(case, "constant", "iceProperties"), "material.density")
     g = abs(float(get_entry(os.path.join(case, "constant", "g"), "value").strip("() ").split()[2]))
     rest_ke, rest_duration = number(control, "restKineticEnergy"), number(control, "restDuration")
 
     rows, series = [], samples(case)
     for t, ps in series:
+        level = level_at(levels, t) if vof else fixed_level
         r = [0.5 * p[6] for p in ps]
         volume = sum(4 / 3 * math.pi * ri ** 3 for ri in r)
         mass = rho_i * volume
@@ -78,7 +98,7 @@ def analyse(case, ranks, wall):
         rows.append({"time": t, "draft": level - low, "draftOverHeight": (level - low) / (high - low),
                      "submergedVolumeFraction": submerged / volume, "centreX": centre[0],
                      "centreY": centre[1], "centreZ": centre[2], "kineticEnergy": kinetic,
-                     "height": high - low})
+                     "height": high - low, "level": level})
     first, last = rows[0], rows[-1]
     radius = 0.5 * series[0][1][0][6]
     energy_scale = mass * g * (2 * radius * layers)
@@ -94,7 +114,7 @@ def analyse(case, ranks, wall):
     level_draft = level_lattice_draft(layers, radius, ratio)
     bonds = list(csv.DictReader(open(os.path.join(case, "postProcessing", "bonds.csv"))))
     s = {
-        "case": "floatingBlock/cfd",
+        "case": "floatingBlock/vof" if vof else "floatingBlock/cfd",
         "submerged_volume_fraction": last["submergedVolumeFraction"],
         "density_ratio": ratio,
         "submerged_volume_fraction_error": last["submergedVolumeFraction"] / ratio - 1.0,
@@ -118,6 +138,8 @@ def analyse(case, ranks, wall):
         "bonds_at_end": int(float(bonds[-1]["intactBonds"])),
         "broken_bonds": int(float(bonds[-1]["brokenBonds"])),
         "particles": len(series[0][1]),
+        **({"water_level_m": last["level"], "initial_water_level_m": first["level"],
+            "max_water_volume_change": max(abs(v[2]) for v in levels)} if vof else {}),
         "ranks": ranks,
         "wall_s": wall,
     }

@@ -88,37 +88,7 @@ int main(int argc, char *argv[])
 
     const auto wallStart = std::chrono::steady_clock::now();
 
-    // The DEM: its script, with the variables couplingProperties gives it.
-    const fileName demScript(runTime.globalPath()/couplingProperties.get<fileName>("demScript"));
-    const fileName demLog(runTime.globalPath()/"DEM"/"log.liggghts");
-    iceDEM::LiggghtsInstance::reportErrorsFromLog(demLog);
-    iceDEM::LiggghtsInstance lmp(MPI_COMM_WORLD, demLog);
-    if (couplingProperties.found("demVariables"))
-    {
-        const dictionary& vars = couplingProperties.subDict("demVariables");
-        for (const entry& e : vars)
-        {
-            OStringStream value;
-            value.precision(17);
-            for (const token& t : e.stream())
-            {
-                value << t;
-            }
-            lmp.setVariable(e.keyword(), value.str());
-        }
-    }
-    lmp.runScript(demScript);
-    ::iceCoupling::DemCoupling dem(lmp, couplingProperties.getOrDefault<word>("demFixExternal", "cfdCoupling"));
-    std::unique_ptr<::iceCoupling::BondedIce> bondedIce;
-    const fileName iceProperties(runTime.globalPath()/"constant"/"iceProperties");
-    const fileName bondHistory(runTime.globalPath()/"postProcessing"/"bonds.csv");
-    if (isFile(iceProperties))
-    {
-        demModelsAction([&]()
-        {
-            bondedIce.reset(new ::iceCoupling::BondedIce(lmp, iceProperties, demScript, dem.gatherAll()));
-        });
-    }
+    #include "createDem.H"
 
     if (runTime.controlDict().getOrDefault("adjustTimeStep", false))
     {
