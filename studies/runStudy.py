@@ -51,7 +51,7 @@ MiB = 1024.0 * 1024.0
 class Point:
     def __init__(self, study, values):
         self.values = values   # {knob name: text}
-        self.label = "_".join(f"{k.name}-{values[k.name]}" for k in study.knobs)
+        self.label = "_".join(f"{k.name}-{values[k.name]}" for k in study.knobs).replace("/", "+")
         self.state = {}
 
 
@@ -191,8 +191,9 @@ class Runner:
         for file, dotted, value, create in self.study.fixed:
             self._set(case, file, dotted, value, create)
         for k in self.study.knobs:
-            if k.file:
-                self._set(case, k.file, k.dotted, p.values[k.name], k.create)
+            if k.file:   # a path (keels/keel0.5/DEM/compacted.h5) is written as a string
+                value = p.values[k.name]
+                self._set(case, k.file, k.dotted, f'"{value}"' if "/" in value else value, k.create)
         return case
 
     @staticmethod

@@ -331,8 +331,8 @@ def read_study(path):
                     t = knob.case_value
                 if t in out:
                     raise d.error(key, f"value '{t}' twice")
-                if not re.fullmatch(r"[\w.+-]+", t):
-                    raise d.error(key, f"'{t}': a value is one word or number")
+                if not re.fullmatch(r"[\w.+/-]+", t) or ".." in t.split("/"):
+                    raise d.error(key, f"'{t}': a value is one word, number or relative path")
                 out.append(t)
             return out
         knob.values = resolve(raw, "values" if d.found("values") else "ladder")

@@ -34,7 +34,9 @@ def plot(runner, rows, path):
             groups = {}
             for r in done:
                 groups.setdefault(tuple(r[k.name] for k in others), []).append(r)
-            for key, group in sorted(groups.items()):
+            def order(item):
+                return [(0, _num(v), "") if _num(v) is not None else (1, 0, v) for v in item[0]]
+            for key, group in sorted(groups.items(), key=order):
                 group.sort(key=lambda r: pos[r[knob.name]])
                 label = ", ".join(f"{k.name} {v}" for k, v in zip(others, key)) or None
                 ax.plot([pos[r[knob.name]] for r in group], [r[name] for r in group], "o-", ms=3, lw=1,
@@ -48,19 +50,28 @@ def plot(runner, rows, path):
                 vals = [pos[v] for v in values]
                 if min(vals) > 0 and max(vals) / min(vals) >= 6:
                     ax.set_xscale("log")
+                    ax.minorticks_off()
+                ax.set_xticks(vals)
+                ax.set_xticklabels(values, fontsize=7)
             else:
                 ax.set_xticks(range(len(values)))
                 ax.set_xticklabels(values, fontsize=7)
             ax.set_xlabel(knob.name, fontsize=8)
             ax.set_ylabel(name, fontsize=8)
             ax.tick_params(labelsize=7)
-            if i == 0 and j == 0 and len(groups) <= 8:
+            if i == 0 and len(groups) <= 8 and ax.get_legend_handles_labels()[0]:
                 ax.legend(fontsize=6)
         ax = axes[i][-1]
         pts = [(r["wall_s"], max(abs(r[name + "_error"]) * 100, 1e-3), r) for r in done
                if r[name + "_error"] == r[name + "_error"] and r["wall_s"] == r["wall_s"]]
         if pts:
-            ax.scatter([p[0] for p in pts], [p[1] for p in pts], s=10, color="tab:blue")
+            first = knobs[0]
+            colours = {v: f"C{k % 10}" for k, v in enumerate(first.values)}
+            for v in first.values:
+                mine = [p for p in pts if p[2][first.name] == v]
+                if mine:
+                    ax.scatter([p[0] for p in mine], [p[1] for p in mine], s=12, color=colours[v],
+                               label=f"{first.name} {v}")
             front, best = [], math.inf
             for w, e, r in sorted(pts, key=lambda p: (p[0], p[1])):
                 if e < best:
@@ -74,9 +85,15 @@ def plot(runner, rows, path):
                 if r["is_reference"]:
                     ax.scatter([w], [e], marker="s", s=25, facecolor="none", edgecolor="k", zorder=3,
                                label="reference (error 0)")
+            if not any(r["is_case_default"] for r in rows):
+                case = ", ".join(f"{k.name} {k.case_value}" for k in knobs)
+                ax.text(0.02, 0.02, f"case default ({case}) not in this study", transform=ax.transAxes,
+                        fontsize=6)
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.legend(fontsize=6)
+            handles, labels = ax.get_legend_handles_labels()
+            unique = dict(zip(labels, handles))
+            ax.legend(unique.values(), unique.keys(), fontsize=6)
         ax.set_xlabel("wall time [s]", fontsize=8)
         ax.set_ylabel(f"|{name} error| [%]", fontsize=8)
         ax.tick_params(labelsize=7)
