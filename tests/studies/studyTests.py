@@ -262,6 +262,8 @@ def test_bad_dict():
         ("figure named like a column", text.replace("slope elastic", "wall_s elastic"), "7", "figures.wall_s",
          "cannot be named"),
         ("a directive", text.replace("set {", "#include \"x\"\nset {"), "6", None, "directives"),
+        ("missing entry", text.replace("figures { slope elastic_slope_N_per_m; firstPeak first_peak_force_N; }", ""),
+         "1", "figures", "missing entry"),
         ("ladder count", text.replace("values (0.4 0.2);", "ladder { from 0.4; factor 0.5; count 0; }"), "4",
          "knobs.platenSpeed.ladder.count", "needs a number > 0"),
     ]
