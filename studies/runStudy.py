@@ -207,28 +207,39 @@ class Runner:
             iceCases.add_entry(path, dotted, value)
 
     def run_point(self, p, how):
+        if self.stopping:   # stopped before this point began: it stays as it was
+            p.skipped_by_stop = True
+            return p
         case = os.path.join(self.folder(p), self.study.case_name)
         if how == "run":
             os.makedirs(self.folder(p), exist_ok=True)
             p.state = {"madeFrom": p.fingerprint, "knobs": p.values, "status": "preparing", "wall_s": 0.0}
             self.save_state(p)
             case = self.prepare(p)
-        cmd = ["mpirun", "-np", str(self.study.ranks), "--oversubscribe", self.study.app, "-case", case]
+        # The peak RSS comes from /usr/bin/time (its wait4 on mpirun, which has reaped the ranks): a
+        # process forked from this runner would count the runner's own memory (Linux keeps the larger
+        # of the forked copy's and the program's high-water mark in ru_maxrss).
+        rss_file = os.path.join(self.folder(p), "rss.txt")
+        timer = ["/usr/bin/time", "-f", "%M", "-o", rss_file] if os.access("/usr/bin/time", os.X_OK) else []
+        if os.path.exists(rss_file):
+            os.remove(rss_file)
+        cmd = timer + ["mpirun", "-np", str(self.study.ranks), "--oversubscribe", self.study.app, "-case", case]
         cmd += command(self.study, p)[3:] + (["-resume"] if how == "resume" else [])
         env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                    OMPI_MCA_mpi_yield_when_idle="1")
         log = os.path.join(self.folder(p), "log.run")
+        err = os.path.join(self.folder(p), "log.err")   # stderr apart: the error message in its order
         p.state.update(status="running", command=" ".join(cmd), started=_now())
         self.save_state(p)
         start = time.time()
-        with open(log, "a" if how == "resume" else "w") as out:
+        mode = "a" if how == "resume" else "w"
+        with open(log, mode) as out, open(err, mode) as errors:
             with self.lock:
                 if self.stopping:
                     p.state["status"] = "killed"
                     self.save_state(p)
                     return p
-                proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, env=env,
-                                        start_new_session=True)
+                proc = subprocess.Popen(cmd, stdout=out, stderr=errors, env=env, start_new_session=True)
                 self.running[p.label] = proc
             _, status, usage = os.wait4(proc.pid, 0)
             proc.returncode = os.waitstatus_to_exitcode(status)
@@ -236,7 +247,13 @@ class Runner:
                 del self.running[p.label]
         wall = time.time() - start
         p.state["wall_s"] = p.state.get("wall_s", 0.0) + wall
-        p.state["peak_rss_MiB"] = max(p.state.get("peak_rss_MiB", 0.0), usage.ru_maxrss * 1024 / MiB)
+        try:
+            rss_kB = float(open(rss_file).read().split()[-1])
+            p.state["rss_from"] = "/usr/bin/time"
+        except (OSError, ValueError, IndexError):   # no /usr/bin/time, or it was killed
+            rss_kB = usage.ru_maxrss
+            p.state["rss_from"] = "wait4 (counts the runner's memory)"
+        p.state["peak_rss_MiB"] = max(p.state.get("peak_rss_MiB", 0.0), rss_kB * 1024 / MiB)
         p.state["load_average"] = round(os.getloadavg()[0], 2)
         p.state["git_revision"] = self.revision
         p.state["finished_at"] = _now()
@@ -249,7 +266,10 @@ class Runner:
             p.state["status"] = "killed"
         else:
             p.state["status"] = "failed"
-            p.state["error"] = f"exit {proc.returncode}: " + error_tail(log).replace(self.runs + os.sep, "runs/")
+            message = error_tail(err)
+            if message == "no message in the log":
+                message = error_tail(log)
+            p.state["error"] = f"exit {proc.returncode}: " + message.replace(self.runs + os.sep, "runs/")
         self.save_state(p)
         return p
 
@@ -404,8 +424,13 @@ class Runner:
             while pending:
                 finished, pending = concurrent.futures.wait(pending, timeout=1.0,
                                                             return_when=concurrent.futures.FIRST_COMPLETED)
+                if self.stopping:
+                    for f in pending:
+                        f.cancel()
                 for f in finished:
                     p = futures[f]
+                    if f.cancelled() or getattr(p, "skipped_by_stop", False):
+                        continue
                     try:
                         f.result()
                     except Exception as e:   # the runner's own failure on this point (a copy, a bad entry)
