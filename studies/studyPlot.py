@@ -41,9 +41,10 @@ def plot(runner, rows, path):
                 label = ", ".join(f"{k.name} {v}" for k, v in zip(others, key)) or None
                 ax.plot([pos[r[knob.name]] for r in group], [r[name] for r in group], "o-", ms=3, lw=1,
                         label=label)
-            for r in rows:
-                if r["status"] == "failed":
-                    ax.axvline(pos[r[knob.name]], color="red", lw=0.6, ls=":")
+            for v in values:   # a value at which every point failed (refused): a red dotted line
+                mine = [r for r in rows if r[knob.name] == v]
+                if mine and all(r["status"] == "failed" for r in mine):
+                    ax.axvline(pos[v], color="red", lw=0.8, ls=":", label=f"{v}: failed")
             if study.reference_type == "measured" and name in study.reference:
                 ax.axhline(study.reference[name], color="k", ls="--", lw=0.8, label="measured")
             if numeric:
