@@ -181,7 +181,9 @@ class Runner:
         if s.get("status") == "failed" and not self.args.retry_failed:
             return "failed"
         checkpoint = os.path.join(case, "DEM", "checkpoint")
-        if self.args.resume and s.get("status") == "killed" and os.path.isdir(checkpoint) and os.listdir(checkpoint):
+        # 'running': the runner itself was killed (SIGKILL, a reboot); the lock says no runner holds it now
+        if self.args.resume and s.get("status") in ("killed", "running") and os.path.isdir(checkpoint) \
+                and os.listdir(checkpoint):
             return "resume"
         return "run"
 
