@@ -153,6 +153,7 @@ class Runner:
         self.stopping = False
         self.revision = iceCases.git_revision()
         self.run_walls = []
+        self.lock_fd = None
 
     # -- state of one point
     def folder(self, p):
@@ -241,7 +242,10 @@ class Runner:
                     p.state["status"] = "killed"
                     self.save_state(p)
                     return p
-                proc = subprocess.Popen(cmd, stdout=out, stderr=errors, env=env, start_new_session=True)
+                # the point holds the study's lock too (an inherited descriptor of the locked file):
+                # if this runner is killed outright, no other runner starts while the point still runs
+                proc = subprocess.Popen(cmd, stdout=out, stderr=errors, env=env, start_new_session=True,
+                                        pass_fds=(self.lock_fd,) if self.lock_fd is not None else ())
                 self.running[p.label] = proc
             _, status, usage = os.wait4(proc.pid, 0)
             proc.returncode = os.waitstatus_to_exitcode(status)
@@ -524,13 +528,14 @@ def main(argv):
     except OSError:
         lock.seek(0)
         holder = lock.read().strip() or "unknown"
-        print(f"runStudy: another runner (pid {holder}) is running this study ({lock_path}); "
-              "wait for it to finish or stop it", file=sys.stderr)
+        print(f"runStudy: another runner (pid {holder}) is running this study ({lock_path}), or a point it "
+              "started still runs; wait for it to finish or stop it", file=sys.stderr)
         return 1
     lock.seek(0)
     lock.truncate()
     lock.write(str(os.getpid()))
     lock.flush()
+    runner.lock_fd = lock.fileno()
     if args.plot:
         for p in runner.points:
             runner.load_state(p)

@@ -302,6 +302,27 @@ def test_lock():
     check(first.returncode == 0 and table(s)["platenSpeed-0.1"]["status"] == "done", "the first finished")
     third = run(s)
     check(third.returncode == 0 and "0 to run" in third.stdout, "after it, a runner may start (lock released)")
+    # a runner killed outright (SIGKILL) leaves its point running: the point keeps the lock
+    shutil.rmtree(os.path.join(s, "runs", "platenSpeed-0.1"))
+    first = run(s, wait=False)
+    log = os.path.join(s, "runs", "platenSpeed-0.1", "log.run")
+    start = time.time()
+    while not (os.path.exists(log) and "iceBeamDEM:" in open(log).read()) and time.time() - start < 60:
+        time.sleep(0.02)
+    first.kill()
+    first.communicate()
+    second = run(s)
+    point_ran_on = "End:" not in open(log).read()
+    check(point_ran_on and second.returncode == 1 and "a point it started still runs" in second.stderr,
+          f"runner SIGKILLed: its orphaned point holds the lock, a new runner is refused (point still ran: "
+          f"{point_ran_on}; second runner: exit {second.returncode} {second.stderr.strip()})")
+    start = time.time()
+    while "End:" not in open(log).read() and time.time() - start < 120:
+        time.sleep(0.1)
+    time.sleep(1)
+    fourth = run(s)
+    check(fourth.returncode == 0 and table(s)["platenSpeed-0.1"]["status"] == "done",
+          "once the orphaned point ended, a runner starts and finishes the point")
 
 
 def test_ranks():
