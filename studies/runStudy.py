@@ -249,6 +249,13 @@ class Runner:
                 self.running[p.label] = proc
             _, status, usage = os.wait4(proc.pid, 0)
             proc.returncode = os.waitstatus_to_exitcode(status)
+            # and what is left of its process group (ranks finishing after a stop) has gone too
+            for _ in range(600):
+                try:
+                    os.killpg(proc.pid, 0)
+                except (ProcessLookupError, PermissionError):
+                    break
+                time.sleep(0.1)
             with self.lock:
                 del self.running[p.label]
         wall = time.time() - start
@@ -405,8 +412,17 @@ class Runner:
         with self.lock:
             self.stopping = True
             for proc in self.running.values():
+                # mpirun (the child of /usr/bin/time, which would die at once and leave it running)
+                # forwards the signal to its ranks and ends after them
                 try:
-                    os.killpg(proc.pid, signal.SIGTERM)
+                    children = open(f"/proc/{proc.pid}/task/{proc.pid}/children").read().split()
+                except OSError:
+                    children = []
+                try:
+                    for child in children:
+                        os.kill(int(child), signal.SIGTERM)
+                    if not children:
+                        os.killpg(proc.pid, signal.SIGTERM)
                 except ProcessLookupError:
                     pass
 

@@ -156,9 +156,18 @@ def test_resume():
     check(proc.returncode == 143 and state(stopped, point)["status"] == "killed",
           f"SIGTERM: exit {proc.returncode} (143), point {state(stopped, point)['status']} (killed)")
     check(table(stopped)[point]["status"] == "killed", "the table says killed")
+    left = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if stopped.encode() in open(f"/proc/{pid}/cmdline", "rb").read():
+                left.append(pid)
+        except OSError:
+            pass
+    check(not left, f"the runner returned after the point's processes had ended (left: {left})")
     r = run(stopped, "-resume")
     log = open(os.path.join(stopped, "runs", point, "log.run")).read()
-    check(r.returncode == 0 and "Resumed from the checkpoint at step" in log, "-resume: resumed from the checkpoint")
+    check(r.returncode == 0 and "Resumed from the checkpoint at step" in log,
+          "-resume: resumed from the checkpoint" + ("" if r.returncode == 0 else ": " + r.stderr.strip()))
     a = json.load(open(os.path.join(whole, "runs", point, "levelIceBeam", "postProcessing", "summary.json")))
     b = json.load(open(os.path.join(stopped, "runs", point, "levelIceBeam", "postProcessing", "summary.json")))
     keys = ["elastic_slope_N_per_m", "first_peak_force_N", "peak_force_N", "steps"]
