@@ -1,0 +1,431 @@
+"""The study dictionary of studies/runStudy.py: an OpenFOAM-style file read strictly.
+
+Syntax (a subset of OpenFOAM's, as the applications' reader accepts it): `keyword value;`,
+`keyword ( item item ... );`, `keyword { ... }`, `// comment` and `/* comment */`, strings in
+double quotes. A keyword written twice in one block, an unknown keyword, a missing entry or a
+value of the wrong kind is refused with an error naming the file, the line and the entry's dotted
+path (StudyDictError); runStudy.py prints it and exits with status 1.
+
+What the entries mean is documented in studies/README.md; `read_study` returns a plain Study
+object with every value checked, the `default` values resolved from the case and ladders expanded.
+"""
+import csv
+import difflib
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "postProcessing"))
+import iceCases  # noqa: E402
+
+TOP = iceCases.TOP
+SHARED = iceCases.SHARED
+
+
+class StudyDictError(Exception):
+    """An error in a study dictionary: `file:line: entry: what`."""
+
+    def __init__(self, path, line, entry, text):
+        self.path, self.line, self.entry = path, line, entry
+        where = f"{path}:{line}" if line else path
+        super().__init__(f"{where}: {entry}: {text}" if entry else f"{where}: {text}")
+
+
+# ---------------------------------------------------------------------------- parsing
+_TOKEN = re.compile(r'\s+|//[^\n]*|/\*.*?\*/|"(?:[^"\\\n]|\\.)*"|[{}();]|[^\s{}();"]+', re.S)
+
+
+class Entry:
+    """One entry: its keyword, line, dotted path and value (a list of tokens, a list of items, or a Dict)."""
+
+    def __init__(self, key, line, path, value, kind):
+        self.key, self.line, self.path, self.value, self.kind = key, line, path, value, kind
+
+
+class Dict:
+    def __init__(self, file, path, line):
+        self.file, self.path, self.line, self.entries = file, path, line, {}
+
+    def error(self, key, text, line=None):
+        entry = self.entries.get(key)
+        return StudyDictError(self.file, line or (entry.line if entry else self.line),
+                              f"{self.path}.{key}" if self.path else key, text)
+
+    def check_keys(self, allowed):
+        for key, entry in self.entries.items():
+            if key not in allowed:
+                close = difflib.get_close_matches(key, allowed, 1)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                raise self.error(key, f"unknown keyword{hint} (allowed: {', '.join(sorted(allowed))})")
+
+    def found(self, key):
+        return key in self.entries
+
+    def _get(self, key):
+        if key not in self.entries:
+            where = f"'{self.path}'" if self.path else "the top level"
+            raise StudyDictError(self.file, self.line, f"{self.path}.{key}" if self.path else key,
+                                 f"missing entry (needed in {where})")
+        return self.entries[key]
+
+    def subdict(self, key):
+        e = self._get(key)
+        if e.kind != "dict":
+            raise self.error(key, "needs a sub-dictionary { ... }")
+        return e.value
+
+    def word(self, key, default=None, allowed=None):
+        if default is not None and key not in self.entries:
+            return default
+        e = self._get(key)
+        if e.kind != "tokens" or len(e.value) != 1:
+            raise self.error(key, "needs one word or number followed by ';'")
+        text = e.value[0]
+        if text.startswith('"'):
+            text = text[1:-1]
+        if allowed is not None and text not in allowed:
+            raise self.error(key, f"'{text}' is not one of: {', '.join(allowed)}")
+        return text
+
+    def number(self, key, default=None, positive=False, whole=False):
+        if default is not None and key not in self.entries:
+            return default
+        text = self.word(key)
+        value = _number(text)
+        if value is None or (whole and value != int(value)):
+            raise self.error(key, f"needs {'a whole number' if whole else 'a number'}, got '{text}'")
+        if positive and not value > 0:
+            raise self.error(key, f"needs a number > 0, got '{text}'")
+        return int(value) if whole else value
+
+    def items(self, key):
+        """A list `( a b c )` as the item texts (quotes removed)."""
+        e = self._get(key)
+        if e.kind != "list":
+            raise self.error(key, "needs a list ( ... );")
+        return [t[1:-1] if t.startswith('"') else t for t in e.value]
+
+    def keys(self):
+        return list(self.entries)
+
+
+def _number(text):
+    try:
+        value = float(text)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def parse(path, text=None):
+    """The top-level Dict of a study dictionary file."""
+    if text is None:
+        try:
+            text = open(path).read()
+        except OSError as e:
+            raise StudyDictError(path, 0, None, f"cannot read: {e.strerror}")
+    tokens, line, pos = [], 1, 0
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None:   # an unterminated string or comment
+            what = "string" if text[pos] == '"' else "comment"
+            raise StudyDictError(path, line, None, f"unterminated {what}")
+        t = m.group(0)
+        if not (t.isspace() or t.startswith("//") or t.startswith("/*")):
+            tokens.append((t, line))
+        line += t.count("\n")
+        pos = m.end()
+    if text[pos:].strip():
+        raise StudyDictError(path, line, None, "unexpected end")
+    top = Dict(path, "", 1)
+    k = _parse_block(path, tokens, 0, top, closing=False)
+    assert k == len(tokens)
+    return top
+
+
+def _parse_block(path, tokens, k, block, closing):
+    while k < len(tokens):
+        t, line = tokens[k]
+        if t == "}":
+            if not closing:
+                raise StudyDictError(path, line, block.path or None, "'}' without its '{'")
+            return k + 1
+        if t in "{}();" or t.startswith("#") or t.startswith("$"):
+            what = "directives (#include, $name) are not read in a study dictionary" if t[0] in "#$" else \
+                f"expected a keyword, got '{t}'"
+            raise StudyDictError(path, line, block.path or None, what)
+        key = t[1:-1] if t.startswith('"') else t
+        dotted = f"{block.path}.{key}" if block.path else key
+        if key in block.entries:
+            raise StudyDictError(path, line, dotted,
+                                 f"written twice in one block (first on line {block.entries[key].line})")
+        k += 1
+        if k >= len(tokens):
+            raise StudyDictError(path, line, dotted, "no value (expected a value and ';', '(' or '{')")
+        t2, line2 = tokens[k]
+        if t2 == "{":
+            sub = Dict(path, dotted, line)
+            k = _parse_block(path, tokens, k + 1, sub, closing=True)
+            block.entries[key] = Entry(key, line, dotted, sub, "dict")
+        elif t2 == "(":
+            items, k = [], k + 1
+            while k < len(tokens) and tokens[k][0] != ")":
+                if tokens[k][0] in "{}(;":
+                    raise StudyDictError(path, tokens[k][1], dotted, f"unexpected '{tokens[k][0]}' in a list")
+                items.append(tokens[k][0])
+                k += 1
+            if k + 1 >= len(tokens) or tokens[k + 1][0] != ";":
+                raise StudyDictError(path, line, dotted, "a list needs ')' and ';'")
+            block.entries[key] = Entry(key, line, dotted, items, "list")
+            k += 2
+        else:
+            values = []
+            while k < len(tokens) and tokens[k][0] not in ";{}()":
+                values.append(tokens[k][0])
+                k += 1
+            if k >= len(tokens) or tokens[k][0] != ";":
+                raise StudyDictError(path, line, dotted, "missing ';' after the value")
+            if not values:
+                raise StudyDictError(path, line, dotted, "no value before ';'")
+            block.entries[key] = Entry(key, line, dotted, values, "tokens")
+            k += 1
+    if closing:
+        raise StudyDictError(path, block.line, block.path, "'{' without its '}'")
+    return k
+
+
+# ---------------------------------------------------------------------------- the study
+class Knob:
+    """One knob: where it goes (`entry` file:dotted or an application `option`), its values."""
+
+    def __init__(self, name):
+        self.name = name
+        self.file = self.dotted = self.option = None
+        self.create = False
+        self.values = []        # texts, `default` resolved
+        self.quick = None
+        self.case_value = None  # the case's own value (text), or None
+        self.finer = None       # 'larger' | 'smaller' | None
+
+    def where(self):
+        return f"{self.file}:{self.dotted}" if self.file else self.option
+
+
+class Study:
+    pass
+
+
+# the table's own columns: no knob or figure may take these names
+RESERVED = {"point", "status", "reference", "is_reference", "is_case_default", "wall_s", "particle_steps_per_s",
+            "n_particles", "n_steps", "ranks", "peak_rss_MiB", "load_average", "git_revision", "finished_at", "error"}
+
+
+def _check_name(d, name, what, taken):
+    if name in RESERVED or name.endswith("_error") or name in taken:
+        raise StudyDictError(d.file, d.entries[name].line, f"{d.path}.{name}",
+                             f"a {what} cannot be named '{name}' (a column of the table: "
+                             f"{', '.join(sorted(RESERVED | set(taken)))}, or *_error)")
+    if not re.fullmatch(r"[A-Za-z]\w*", name):
+        raise StudyDictError(d.file, d.entries[name].line, f"{d.path}.{name}",
+                             f"a {what}'s name is a word of letters, digits and '_'")
+
+
+def _split_entry(d, key, spec):
+    if ":" not in spec:
+        raise d.error(key, f"needs 'file:dotted.entry' (e.g. system/controlDict:writeInterval), got '{spec}'")
+    file, dotted = spec.split(":", 1)
+    if os.path.isabs(file) or ".." in file.split("/") or not dotted or not re.fullmatch(r"[\w.]+", dotted):
+        raise d.error(key, f"needs a file inside the case and a dotted entry, got '{spec}'")
+    return file, dotted
+
+
+def _case_value(case, file, dotted):
+    try:
+        return iceCases.get_entry(os.path.join(case, file), dotted).strip()
+    except (KeyError, OSError):
+        return None
+
+
+def _ladder(d, key):
+    """`ladder { from 0.4; factor 0.5; count 4; }` -> texts 0.4 0.2 0.1 0.05 (%.6g)."""
+    lad = d.subdict(key)
+    lad.check_keys({"from", "factor", "count"})
+    start, factor = lad.number("from"), lad.number("factor", positive=True)
+    count = lad.number("count", whole=True, positive=True)
+    return ["%.6g" % (start * factor ** i) for i in range(count)]
+
+
+def read_study(path):
+    """The Study of the study dictionary at path (a file, or a folder holding `studyDict`)."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "studyDict")
+    path = os.path.abspath(path)
+    top = parse(path)
+    top.check_keys({"study", "knobs", "set", "figures", "reference"})
+    s = Study()
+    s.dict_path = path
+    s.folder = os.path.dirname(path)
+
+    st = top.subdict("study")
+    st.check_keys({"case", "application", "ranks", "arguments", "description"})
+    case = st.word("case")
+    candidates = [os.path.join(s.folder, case), os.path.join(TOP, "cases", case)] if not os.path.isabs(case) else [case]
+    found = [c for c in candidates if os.path.isfile(os.path.join(c, "Allrun"))]
+    if not found:
+        raise st.error("case", f"no case '{case}' (looked for an Allrun in {', '.join(candidates)})")
+    s.case = os.path.realpath(found[0])
+    s.case_name = os.path.basename(s.case)
+    s.application = st.word("application")
+    s.app = os.path.join(iceCases.BUILD, "demModels", s.application)
+    if not re.fullmatch(r"\w+", s.application):
+        raise st.error("application", f"needs the name of an application in build/demModels, got '{s.application}'")
+    s.ranks = st.number("ranks", default=1, whole=True, positive=True)
+    s.arguments = st.items("arguments") if st.found("arguments") else []
+    s.description = st.word("description", default="")
+
+    kd = top.subdict("knobs")
+    if not kd.keys():
+        raise StudyDictError(path, kd.line, "knobs", "needs at least one knob")
+    s.knobs = []
+    for name in kd.keys():
+        _check_name(kd, name, "knob", [k.name for k in s.knobs])
+        d = kd.subdict(name)
+        d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create"})
+        knob = Knob(name)
+        if d.found("entry") == d.found("option"):
+            raise StudyDictError(path, d.line, d.path, "needs one of 'entry file:dotted.path;' or 'option -name;'")
+        if d.found("entry"):
+            knob.file, knob.dotted = _split_entry(d, "entry", d.word("entry"))
+            knob.create = d.word("create", default="no", allowed=("yes", "no")) == "yes"
+            knob.case_value = _case_value(s.case, knob.file, knob.dotted)
+            if not os.path.isfile(os.path.join(s.case, knob.file)):
+                raise d.error("entry", f"the case has no file {knob.file} ({s.case})")
+            if knob.case_value is None and not knob.create:
+                raise d.error("entry", f"{knob.dotted} is not in {s.case_name}/{knob.file} nor in the files it "
+                                       "includes (write 'create yes;' if the point may add it)")
+        else:
+            knob.option = d.word("option")
+            if not re.fullmatch(r"-\w+", knob.option):
+                raise d.error("option", f"needs an option such as -particles, got '{knob.option}'")
+            if d.found("create"):
+                raise d.error("create", "only for an 'entry' knob")
+        if d.found("caseEntry"):
+            file, dotted = _split_entry(d, "caseEntry", d.word("caseEntry"))
+            knob.case_value = _case_value(s.case, file, dotted)
+            if knob.case_value is None:
+                raise d.error("caseEntry", f"{dotted} is not in {s.case_name}/{file}")
+        if d.found("values") == d.found("ladder"):
+            raise StudyDictError(path, d.line, d.path, "needs one of 'values ( ... );' or 'ladder { ... }'")
+        raw = d.items("values") if d.found("values") else _ladder(d, "ladder")
+        if not raw:
+            raise d.error("values", "needs at least one value")
+
+        def resolve(texts, key):
+            out = []
+            for t in texts:
+                if t == "default":
+                    if knob.case_value is None:
+                        raise d.error(key, "'default' needs the case's own value: the entry is not in the case"
+                                           + ("" if knob.file else " (name it with 'caseEntry file:dotted;')"))
+                    t = knob.case_value
+                if t in out:
+                    raise d.error(key, f"value '{t}' twice")
+                if not re.fullmatch(r"[\w.+/-]+", t) or ".." in t.split("/"):
+                    raise d.error(key, f"'{t}': a value is one word, number or relative path")
+                out.append(t)
+            return out
+        knob.values = resolve(raw, "values" if d.found("values") else "ladder")
+        if d.found("quick"):
+            knob.quick = resolve(d.items("quick"), "quick")
+            extra = [q for q in knob.quick if q not in knob.values]
+            if extra:
+                raise d.error("quick", f"{', '.join(extra)} not among the values")
+        if d.found("finer"):
+            knob.finer = d.word("finer", allowed=("larger", "smaller"))
+            bad = [v for v in knob.values if _number(v) is None]
+            if bad:
+                raise d.error("finer", f"needs numeric values, got {', '.join(bad)}")
+        s.knobs.append(knob)
+
+    s.fixed = []   # (file, dotted, value, create)
+    if top.found("set"):
+        sd = top.subdict("set")
+        for key in sd.keys():
+            file, dotted = _split_entry(sd, key, key)
+            e = sd.entries[key]
+            if e.kind == "dict":
+                sub = e.value
+                sub.check_keys({"value", "create"})
+                value, create = sub.word("value"), sub.word("create", default="no", allowed=("yes", "no")) == "yes"
+            else:
+                value, create = sd.word(key), False
+            if not os.path.isfile(os.path.join(s.case, file)):
+                raise sd.error(key, f"the case has no file {file}")
+            if _case_value(s.case, file, dotted) is None and not create:
+                raise sd.error(key, f"{dotted} is not in {s.case_name}/{file} (write "
+                                    f"'\"{key}\" {{ value {value}; create yes; }}' if it may be added)")
+            s.fixed.append((file, dotted, value, create))
+
+    fd = top.subdict("figures")
+    if not fd.keys():
+        raise StudyDictError(path, fd.line, "figures", "needs at least one figure")
+    s.figures = []   # (name, dotted key in summary.json)
+    for name in fd.keys():
+        _check_name(fd, name, "figure", [k.name for k in s.knobs] + [n for n, _ in s.figures])
+        e = fd.entries[name]
+        if e.kind == "dict":
+            e.value.check_keys({"key"})
+            key = e.value.word("key")
+        else:
+            key = fd.word(name)
+        if not re.fullmatch(r"[\w.]+", key):
+            raise fd.error(name, f"needs a dotted key of summary.json, got '{key}'")
+        s.figures.append((name, key))
+
+    rd = top.subdict("reference")
+    s.reference_type = rd.word("type", allowed=("measured", "finest"))
+    if s.reference_type == "measured":
+        rd.check_keys({"type", "values", "file", "quantities", "source"})
+        s.reference_source = rd.word("source", default="")
+        s.reference = {}
+        if rd.found("file"):
+            ref_file = rd.word("file").replace("$SHARED", SHARED)
+            ref_file = os.path.normpath(os.path.join(s.folder, ref_file))
+            if not os.path.isfile(ref_file):
+                raise rd.error("file", f"no file {ref_file}")
+            table = {}
+            with open(ref_file) as f:
+                for row in csv.DictReader(line for line in f if not line.startswith("#")):
+                    table[row.get("quantity")] = row.get("value")
+            qd = rd.subdict("quantities")
+            for name in qd.keys():
+                q = qd.word(name)
+                if q not in table or _number(table[q]) is None:
+                    raise qd.error(name, f"no numeric quantity '{q}' in {ref_file}")
+                s.reference[name] = _number(table[q])
+            s.reference_source = s.reference_source or os.path.relpath(ref_file, TOP)
+        if rd.found("values"):
+            vd = rd.subdict("values")
+            for name in vd.keys():
+                s.reference[name] = vd.number(name)
+        names = [n for n, _ in s.figures]
+        for name in s.reference:
+            if name not in names:
+                raise StudyDictError(path, rd.line, "reference", f"'{name}' is no figure (figures: {', '.join(names)})")
+        if not s.reference:
+            raise StudyDictError(path, rd.line, "reference", "a measured reference needs 'values { ... }' or 'file'")
+    else:
+        rd.check_keys({"type"})
+        if not any(k.finer for k in s.knobs):
+            raise rd.error("type", "'finest' needs at least one knob with 'finer larger;' or 'finer smaller;'")
+    return s
+
+
+if __name__ == "__main__":
+    try:
+        study = read_study(sys.argv[1])
+    except StudyDictError as e:
+        sys.exit(str(e))
+    for k in study.knobs:
+        print(k.name, k.where(), k.values, "quick", k.quick, "case", k.case_value, "finer", k.finer)
