@@ -80,8 +80,10 @@ def verdict(figures):
     f = figures["first_failure"]
     if f is None:
         return "no freeze-bond broke"
-    return (f"first freeze-bond failure at {1e3 * f['travel_m']:.1f} mm of travel and {f['force_N']:.0f} N "
-            f"(x{f['force_rise']:.1f} the force at a quarter of that travel), {100 * f['from_load_line_m']:.0f} cm "
+    return (f"first freeze-bond failure at {1e3 * f['travel_m']:.2f} mm of travel and {f['force_N']:.0f} N "
+            + (f"(x{f['force_rise']:.1f} the force at a quarter of that travel)" if f["force_rise"] is not None
+               else "(no force yet at a quarter of that travel)")
+            + f", {100 * f['from_load_line_m']:.0f} cm "
             f"from the load line, {100 * f['height_in_keel']:.0f} % up the keel, in {f['mode']}; "
             f"{100 * figures['bottom_centre_tension_share_of_first_n']:.0f} % of the first {figures['first_n']} "
             f"in tension at the bottom centre; peak {figures['peak_force_N']:.0f} N at "
