@@ -432,8 +432,10 @@ Provenance RubbleScene::readSettlingInputs() const
     Provenance p;
     p.add("stage", "rubbleDEM settle");
     p.addDictionaryFile("constant/iceProperties", context_.path("constant/iceProperties"));
-    // ends and compaction: the later stages'; blocks.shape as resolved with -shape below
-    p.addDictionaryFile("constant/rubbleProperties", context_.path("constant/rubbleProperties"), {"ends", "compaction"});
+    // ends and compaction: the later stages'; blocks.shape as resolved with -shape below (the
+    // dictionary's own is not what the blocks were made of when -shape overrode it)
+    p.addDictionaryFile("constant/rubbleProperties", context_.path("constant/rubbleProperties"),
+                        {"ends", "compaction", "blocks.shape"});
     p.add("block shape (with -shape)", name(settings_.shape));
     p.add("ice rained in: porosity of a blocks.rubbleThickness layer", exactNumber(settings_.expectedPorosity));
     const Dictionary coupling = Dictionary::readFile(context_.path("constant/couplingProperties"));

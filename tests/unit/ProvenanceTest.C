@@ -118,6 +118,19 @@ TEST(Provenance, DictionaryEntriesAreReadAsResolvedWithIgnoredKeywordsLeftOut)
     std::filesystem::remove_all(dir);
 }
 
+TEST(Provenance, AnEntryOfASubDictionaryIsLeftOutByItsDottedPath)
+{
+    // rubbleDEM -shape overrides blocks.shape: the dictionary's own value is not an input
+    const Dictionary d = Dictionary::parse("blocks { shape cuboid; thickness 0.1; }\nshape keep;\n"
+                                           "ends { fixedLength 0.1; }\n", "rubbleProperties");
+    Provenance p;
+    p.addDictionary("constant/rubbleProperties", d, {"ends", "blocks.shape"});
+    EXPECT_EQ(p.value("constant/rubbleProperties/blocks.shape"), "");
+    EXPECT_EQ(p.value("constant/rubbleProperties/blocks.thickness"), "0.1");
+    EXPECT_EQ(p.value("constant/rubbleProperties/shape"), "keep");
+    EXPECT_EQ(p.value("constant/rubbleProperties/ends.fixedLength"), "");
+}
+
 TEST(Provenance, AStageIsRecordedByItsFingerprint)
 {
     Provenance keel;

@@ -40,11 +40,17 @@ void flatten
 {
     for (const std::string& key : d.keys())
     {
-        if (ignored.count(key)) continue;
+        // a keyword of d itself, or an entry anywhere by its dotted path (blocks.shape)
+        if (ignored.count(key) || ignored.count(d.entryPath(key))) continue;
         const Dictionary::Entry& e = d.entry(key);
         if (e.dict)
         {
-            flatten(out, label, *e.dict, {});
+            std::set<std::string> nested;
+            for (const std::string& name : ignored)
+            {
+                if (name.find('.') != std::string::npos) nested.insert(name);
+            }
+            flatten(out, label, *e.dict, nested);
         }
         else
         {
