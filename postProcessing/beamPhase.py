@@ -15,11 +15,15 @@ RUN_DIR/postProcessing/{breakage.h5, platenForce.csv, geometry.json} and reports
   the platen fails at the first contact, at no rise);
 - of the first N freeze-bond failures (default 10), the share in tension in the bottom half of
   the keel within a quarter of the span of the load line ("bottom centre");
-- the peak force and its travel, and the freeze-bonds broken before it.
+- the peak force and its travel, and the freeze-bonds broken before it;
+- where the curve has them (a punch's platenForce.csv: buoyancyShare, brokenBonds), the force,
+  buoyancy share and broken bonds every 5 mm to 30 mm, and the largest force minus buoyancy
+  share before 40 mm of travel (the rubble's own resistance: a beam's peak).
 
 Prints a one-line verdict and, with --json, writes these figures (atomically).
 Exit status 1 with a message naming the file and entry on bad input."""
 import argparse
+import csv
 import json
 import os
 import sys
@@ -39,6 +43,26 @@ def force_at(travel, force, at):
     return float(np.interp(at, travel, force))
 
 
+def beam_curve(curve_path, travel, force):
+    """Samples every 5 mm to 30 mm and the rubble's largest share before 40 mm, or {} when the
+    curve has no buoyancyShare column."""
+    with open(curve_path, newline="") as handle:
+        rows = list(csv.DictReader(line for line in handle if line.strip() and not line.lstrip().startswith("#")))
+    if not rows or "buoyancyShare" not in rows[0] or len(rows) != len(travel):
+        return {}
+    share = np.array([float(r["buoyancyShare"]) for r in rows])
+    broken = np.array([float(r.get("brokenBonds", "nan")) for r in rows])
+    samples = []
+    for mm in range(5, 35, 5):
+        k = int(np.argmin(np.abs(travel - 1e-3 * mm)))
+        samples.append({"travel_mm": mm, "force_N": float(force[k]), "buoyancy_share_N": float(share[k]),
+                        "broken_bonds": int(broken[k]) if np.isfinite(broken[k]) else None})
+    early = travel < 0.04
+    rubble = np.where(early, force - share, -np.inf)
+    k = int(np.argmax(rubble))
+    return {"samples": samples, "rubble_share_peak_N": float(rubble[k]), "rubble_share_peak_travel_m": float(travel[k])}
+
+
 def first_failures(run, first=10):
     """The figures of the module docstring for a finished platen run."""
     post = os.path.join(run, "postProcessing")
@@ -51,9 +75,11 @@ def first_failures(run, first=10):
     depth = keel["zTop"] - keel["zBottom"]
     freeze = np.flatnonzero(record["family"] == FREEZE)
     peak = int(np.argmax(force))
-    out = {"run": os.path.abspath(run), "peak_force_N": float(force[peak]), "peak_travel_m": float(travel[peak]),
+    out = {"run": os.path.basename(os.path.abspath(run)), "peak_force_N": float(force[peak]),
+           "peak_travel_m": float(travel[peak]),
            "freeze_bonds_broken": int(len(freeze)),
            "freeze_bonds_broken_before_peak": int(np.sum(record["time"][freeze] <= time[peak]))}
+    out.update(beam_curve(os.path.join(post, "platenForce.csv"), travel, force))
     if len(freeze) == 0:
         out["first_failure"] = None
         return out
