@@ -23,7 +23,6 @@ RUN_DIR/postProcessing/{breakage.h5, platenForce.csv, geometry.json} and reports
 Prints a one-line verdict and, with --json, writes these figures (atomically).
 Exit status 1 with a message naming the file and entry on bad input."""
 import argparse
-import csv
 import json
 import os
 import sys
@@ -45,18 +44,18 @@ def force_at(travel, force, at):
 
 def beam_curve(curve_path, travel, force):
     """Samples every 5 mm to 30 mm and the rubble's largest share before 40 mm, or {} when the
-    curve has no buoyancyShare column."""
-    with open(curve_path, newline="") as handle:
-        rows = list(csv.DictReader(line for line in handle if line.strip() and not line.lstrip().startswith("#")))
-    if not rows or "buoyancyShare" not in rows[0] or len(rows) != len(travel):
+    curve has no buoyancyShare and brokenBonds columns."""
+    try:
+        _, share, broken = read_curve(curve_path, ("time", "buoyancyShare", "brokenBonds"))
+    except InputError:
         return {}
-    share = np.array([float(r["buoyancyShare"]) for r in rows])
-    broken = np.array([float(r.get("brokenBonds", "nan")) for r in rows])
+    if len(share) != len(travel):
+        return {}
     samples = []
     for mm in range(5, 35, 5):
         k = int(np.argmin(np.abs(travel - 1e-3 * mm)))
         samples.append({"travel_mm": mm, "force_N": float(force[k]), "buoyancy_share_N": float(share[k]),
-                        "broken_bonds": int(broken[k]) if np.isfinite(broken[k]) else None})
+                        "broken_bonds": int(broken[k])})
     early = travel < 0.04
     rubble = np.where(early, force - share, -np.inf)
     k = int(np.argmax(rubble))

@@ -206,6 +206,14 @@ def small_rubble_case(source, path, length, width, thickness, max_time, tilt, en
     return path
 
 
+def fatal_message(text):
+    """The application's own message in a failed run's output (the line after its FATAL banner),
+    or the output's first line when it has no banner."""
+    lines = str(text).splitlines()
+    return next((lines[i + 1].strip() for i, line in enumerate(lines[:-1]) if "FATAL" in line),
+                lines[0] if lines else "failed")
+
+
 def run_app(app, case, ranks=1, args=(), log_name="log.run"):
     """Runs an application on a case; returns the wall time in s. Raises on failure."""
     # yield_when_idle: ranks that wait do not busy-spin a shared core (2 ranks on 2 busy cores).

@@ -216,8 +216,7 @@ def attempt(test, *args):
     try:
         return test(*args)
     except RuntimeError as error:
-        lines = str(error).splitlines()
-        reason = next((lines[i + 1].strip() for i, line in enumerate(lines[:-1]) if "FATAL" in line), lines[0])
+        reason = iceCases.fatal_message(error)
         print(f"{test.__name__} {label}: failed ({reason})", flush=True)
         return {"test": test.__name__, "label": label, "T_p": t_p, "S_p": s_p, "applied_Pa": applied,
                 "failed": reason}
@@ -285,9 +284,10 @@ def main():
         ap.error("--ice-modulus and --freeze-modulus go together (their ratio is what the calibration holds for)")
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", a.dictionary):
         ap.error(f"--dictionary: a plain file name (letters, digits, _), got '{a.dictionary}'")
-    stem = "particleStrengths" if a.dictionary == "freezeBondCalibration" else \
-        "particleStrengths" + a.dictionary[len("freezeBondCalibration"):] \
-        if a.dictionary.startswith("freezeBondCalibration") else "particleStrengths_" + a.dictionary
+    # freezeBondCalibration<Suffix> -> particleStrengths<Suffix>.*
+    prefix = "freezeBondCalibration"
+    stem = "particleStrengths" + (a.dictionary[len(prefix):] if a.dictionary.startswith(prefix)
+                                  else "_" + a.dictionary)
     outputs = [os.path.join(a.out, f) for f in ("particleStrengths.csv", "particleStrengths.md", "particleStrengths.png",
                                                 "particleStrengths.json")]
     if a.publish:

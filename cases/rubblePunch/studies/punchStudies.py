@@ -78,20 +78,11 @@ def compacted_keel(work, porosity):
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
         except RuntimeError as error:
-            return None, refusal(str(error))
+            return None, iceCases.fatal_message(error)
     line = next(l for l in open(os.path.join(keel, "log.compact")) if l.startswith("Compacted"))
     found = re.search(r"porosity ([\d.]+) -> ([\d.]+), ([\d.]+) after the lid backed off", line)
     return stage, {"settled": float(found.group(1)), "closed": float(found.group(2)),
                    "held": float(found.group(3))}
-
-
-def refusal(log_tail):
-    """The application's own message in a failed run's log tail (the line after FATAL)."""
-    lines = log_tail.splitlines()
-    for i, line in enumerate(lines):
-        if "FATAL" in line and i + 1 < len(lines):
-            return lines[i + 1].strip()
-    return lines[-1] if lines else "failed"
 
 
 def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped"):

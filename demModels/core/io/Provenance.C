@@ -35,22 +35,18 @@ void flatten
     std::map<std::string, std::string>& out,
     const std::string& label,
     const Dictionary& d,
-    const std::set<std::string>& ignored
+    const std::set<std::string>& ignored,
+    bool topLevel = true
 )
 {
     for (const std::string& key : d.keys())
     {
         // a keyword of d itself, or an entry anywhere by its dotted path (blocks.shape)
-        if (ignored.count(key) || ignored.count(d.entryPath(key))) continue;
+        if ((topLevel && ignored.count(key)) || ignored.count(d.entryPath(key))) continue;
         const Dictionary::Entry& e = d.entry(key);
         if (e.dict)
         {
-            std::set<std::string> nested;
-            for (const std::string& name : ignored)
-            {
-                if (name.find('.') != std::string::npos) nested.insert(name);
-            }
-            flatten(out, label, *e.dict, nested);
+            flatten(out, label, *e.dict, ignored, false);
         }
         else
         {

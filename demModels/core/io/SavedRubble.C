@@ -142,6 +142,31 @@ double readScalarAttribute(hid_t object, const char* name, const std::string& pa
     return value;
 }
 
+
+//- The saved stage in the open HDF5 file (std::runtime_error where a part is missing).
+SavedRubble readStage(hid_t file, const std::string& path)
+{
+    SavedRubble r;
+    r.particles = readTable(file, "particles", particleColumns(), path);
+    r.bonds = readTable(file, "bonds", bondColumns(), path);
+    H5Id root(H5Gopen2(file, "/", H5P_DEFAULT), H5Gclose, hdf5Failure(path, "no root group"));
+    r.time = readScalarAttribute(root.get(), "time", path);
+    r.waterLevel = readScalarAttribute(root.get(), "waterLevel", path);
+    r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
+    r.kind = readStringAttributeOrEmpty(root.get(), "kind", path);
+    r.restart = readStringAttributeOrEmpty(root.get(), "restart", path);
+    if (H5Aexists(root.get(), "plateBottom") > 0 && H5Aexists(root.get(), "plateTop") > 0)
+    {
+        r.plateBottom = readScalarAttribute(root.get(), "plateBottom", path);
+        r.plateTop = readScalarAttribute(root.get(), "plateTop", path);
+        if (H5Aexists(root.get(), "plateHoldPressure") > 0)
+        {
+            r.plateHoldPressure = readScalarAttribute(root.get(), "plateHoldPressure", path);
+        }
+    }
+    return r;
+}
+
 } // namespace
 
 
@@ -190,23 +215,21 @@ SavedRubble SavedRubble::read(const std::string& path, const std::string& expect
     {
         throw InputError(path, "(file)", "is not an HDF5 file, or is truncated: not a saved stage of this program");
     }
+    QuietHdf5Errors quiet;
+    const hid_t opened = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (opened < 0)
     {
-        QuietHdf5Errors quiet;
-        const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-        if (file < 0)
-        {
-            // The signature is there but the file ends before what its superblock promises.
-            throw InputError(path, "(file)", "is truncated or damaged: it begins as an HDF5 file ("
-                + std::to_string(std::filesystem::file_size(path)) + " bytes) but HDF5 cannot open it;"
-                " stages are written whole (a temporary file, then renamed), so a copy or a full disk"
-                " cut this one short: copy it again or rebuild the stage");
-        }
-        H5Fclose(file);
+        // The signature is there but the file ends before what its superblock promises.
+        throw InputError(path, "(file)", "is truncated or damaged: it begins as an HDF5 file ("
+            + std::to_string(std::filesystem::file_size(path)) + " bytes) but HDF5 cannot open it;"
+            " stages are written whole (a temporary file, then renamed), so a copy or a full disk"
+            " cut this one short: copy it again or rebuild the stage");
     }
+    H5Id file(opened, H5Fclose, hdf5Failure(path, "cannot open file (saved rubble)"));
     SavedRubble r;
     try
     {
-        r = readContents(path);
+        r = readStage(file.get(), path);
     }
     catch (const std::runtime_error& e)
     {
@@ -217,33 +240,6 @@ SavedRubble SavedRubble::read(const std::string& path, const std::string& expect
     {
         throw InputError(path, "kind", "holds " + (r.kind.empty() ? std::string("no kind (written by an older version)")
             : "a " + r.kind) + ", where a " + expectedKind + " is needed");
-    }
-    return r;
-}
-
-
-SavedRubble SavedRubble::readContents(const std::string& path)
-{
-    QuietHdf5Errors quiet;
-    H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-              hdf5Failure(path, "cannot open file (saved rubble)"));
-    SavedRubble r;
-    r.particles = readTable(file.get(), "particles", particleColumns(), path);
-    r.bonds = readTable(file.get(), "bonds", bondColumns(), path);
-    H5Id root(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, hdf5Failure(path, "no root group"));
-    r.time = readScalarAttribute(root.get(), "time", path);
-    r.waterLevel = readScalarAttribute(root.get(), "waterLevel", path);
-    r.provenance = readStringAttributeOrEmpty(root.get(), "provenance", path);
-    r.kind = readStringAttributeOrEmpty(root.get(), "kind", path);
-    r.restart = readStringAttributeOrEmpty(root.get(), "restart", path);
-    if (H5Aexists(root.get(), "plateBottom") > 0 && H5Aexists(root.get(), "plateTop") > 0)
-    {
-        r.plateBottom = readScalarAttribute(root.get(), "plateBottom", path);
-        r.plateTop = readScalarAttribute(root.get(), "plateTop", path);
-        if (H5Aexists(root.get(), "plateHoldPressure") > 0)
-        {
-            r.plateHoldPressure = readScalarAttribute(root.get(), "plateHoldPressure", path);
-        }
     }
     return r;
 }
