@@ -8,6 +8,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -51,6 +52,39 @@ double totalKineticEnergy(const LiggghtsInstance& lmp)
         }
     }
     return sumOverRanks(lmp.communicator(), e);
+}
+
+
+FastestParticle fastestParticle(const LiggghtsInstance& lmp)
+{
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    int fastest = -1;
+    double speed2 = -1.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        const double v2 = atom.v[i][0] * atom.v[i][0] + atom.v[i][1] * atom.v[i][1] + atom.v[i][2] * atom.v[i][2];
+        if (v2 > speed2)
+        {
+            speed2 = v2;
+            fastest = i;
+        }
+    }
+    struct { double value; int rank; } local{speed2, 0}, global{};
+    MPI_Comm_rank(lmp.communicator(), &local.rank);
+    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, lmp.communicator());
+    // The owner sends tag and position: 4 numbers.
+    double data[4] = {0.0, 0.0, 0.0, 0.0};
+    if (local.rank == global.rank && fastest >= 0)
+    {
+        data[0] = static_cast<double>(atom.tag[fastest]);
+        for (int k = 0; k < 3; ++k) data[k + 1] = atom.x[fastest][k];
+    }
+    MPI_Bcast(data, 4, MPI_DOUBLE, global.rank, lmp.communicator());
+    FastestParticle f;
+    f.speed = std::sqrt(std::max(global.value, 0.0));
+    f.tag = static_cast<long>(data[0]);
+    f.position = Vec3(data[1], data[2], data[3]);
+    return f;
 }
 
 

@@ -70,6 +70,11 @@ void PlatenLoadingControl::readControl(const Dictionary& control)
     {
         control.fail("blowUpFactor", "expected a number >= 1 (the kinetic energy allowed per unit of energy put in)");
     }
+    maxParticleSpeed = control.getScalarOrDefault("maxParticleSpeed", 0.0);
+    if (maxParticleSpeed < 0.0)
+    {
+        control.fail("maxParticleSpeed", "expected a speed >= 0 in m/s (0: no limit)");
+    }
     maxKineticToWork = readMaxKineticToWorkRatio(control);
     sampleInterval = control.getPositiveScalarOrDefault("sampleInterval", 2e-4);
     writeInterval = control.getPositiveScalarOrDefault("writeInterval", 0.01);
@@ -566,7 +571,8 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, con
     }
     int failed = failure.empty() ? 0 : 1, anyFailed = 0;
     MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, context_.comm());
-    if (anyFailed == 0 && kinetic > control_.blowUpFactor * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
+    if (anyFailed == 0 && !motionPrescribed_
+        && kinetic > control_.blowUpFactor * (std::abs(state_.platenWork) + state_.kineticAtStart) + 1e-6)
     {
         std::ostringstream msg;
         msg << "kinetic energy " << kinetic << " J exceeds " << control_.blowUpFactor << " times the work done by the platen ("
@@ -578,6 +584,20 @@ void PlatenLoading::checkHealth(LiggghtsInstance& lmp, IceBondForces& bonds, con
             << " ice that falls when it breaks, may need a larger blowUpFactor in system/controlDict)";
         failure = msg.str();
         anyFailed = 1;
+    }
+    if (anyFailed == 0 && control_.maxParticleSpeed > 0.0)
+    {
+        const FastestParticle fastest = fastestParticle(lmp);
+        if (fastest.speed > control_.maxParticleSpeed)
+        {
+            std::ostringstream msg;
+            msg << "particle " << fastest.tag << " at (" << fastest.position.transpose() << ") moves at "
+                << fastest.speed << " m/s, faster than maxParticleSpeed " << control_.maxParticleSpeed
+                << " m/s (system/controlDict), at time " << time(lmp) << " s, step " << lmp.step()
+                << ": the run has blown up";
+            failure = msg.str();
+            anyFailed = 1;
+        }
     }
     if (anyFailed)
     {

@@ -186,7 +186,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     const Dictionary control = Dictionary::readFile(s.caseDir + "/" + controlFile);
     control.checkKeys
     ({
-        "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "application", "maxTravel", "minTravel", "rampTravel", "blowUpFactor", "maxParticleSpeed", "stopAfterHalfLoad", "travelAfterHalfLoad",
         "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
     });
     s.loading.readControl(control);
@@ -907,6 +907,7 @@ void RidgeScene::load()
     );
     loading_->setInputs(loadingInputs(ridgeInputs));
     loading_->setTimeStepChangedAtStart(settleDt != dt_);
+    loading_->setMotionPrescribed(!test_->integratesParticles());
     std::unique_ptr<Checkpoint> checkpoint;
     if (settings_.resume && loading_->checkpointExists())
     {

@@ -80,6 +80,34 @@ TEST(BondStiffness, CompressionPushesApart)
     EXPECT_LT(load.forceOnA.x(), 0.0);
 }
 
+// A compliant freeze-bond whose blocks bear on each other in compression: the
+// normal spring is E A / L in tension and E_c A / L in compression, and its
+// energy is that of the spring acting.
+TEST(BondStiffness, CompressionModulusActsInCompressionOnly)
+{
+    BondFamilyParameters family = iceFamily();
+    family.youngsModulus = 2.8e6;
+    family.compressionModulus = youngs;
+    BondModel model(family, noDamping());
+    const double stretch = 1e-6;
+    for (double sign : {1.0, -1.0})
+    {
+        Pair p;
+        BondState s = model.create(1, 2, p.a, p.b);
+        p.b.position.x() += sign * stretch;
+        const BondLoad load = model.evaluate(s, p.a, p.b, dt);
+        const double modulus = sign > 0.0 ? 2.8e6 : youngs;
+        const double expected = sign * modulus * area / beamLength * stretch;
+        EXPECT_NEAR(load.springNormalForce / expected, 1.0, 1e-6) << "sign " << sign;
+        EXPECT_NEAR(load.forceOnA.x() / expected, 1.0, 1e-6) << "sign " << sign;
+        const double energy = 0.5 * modulus * area / beamLength * stretch * stretch;
+        EXPECT_NEAR(model.potentialEnergy(s, p.a, p.b) / energy, 1.0, 1e-6) << "sign " << sign;
+    }
+    // Without the entry the bond is as stiff in compression as in tension.
+    EXPECT_DOUBLE_EQ(BondStiffness::of(iceFamily(), radius, radius).normalCompression,
+                     BondStiffness::of(iceFamily(), radius, radius).normal);
+}
+
 TEST(BondStiffness, ShearSpringIsGAoverL)
 {
     BondModel model(iceFamily(), noDamping());

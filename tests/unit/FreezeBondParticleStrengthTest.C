@@ -173,6 +173,25 @@ TEST(FreezeBondParticleStrength, CalibratedHoldsForItsModulusRatioOnly)
 }
 
 
+TEST(FreezeBondParticleStrength, CalibratedHoldsForItsCompressionModulusOnly)
+{
+    // A calibration without the entry was made with bonds as stiff in compression as in tension.
+    const auto p = propertiesFrom(set4h + calibrated);
+    IceProperties ice;
+    ice.families[static_cast<int>(BondFamily::ice)].youngsModulus = 1.95e8;
+    ice.families[static_cast<int>(BondFamily::freeze)].youngsModulus = 1.95e8;
+    ice.families[static_cast<int>(BondFamily::freeze)].compressionModulus = 3.9e8;
+    const std::string m = messageOf([&] { p.checkIce(ice, "constant/iceProperties"); });
+    EXPECT_NE(m.find("entry 'calibratedCoeffs.freezeCompressionToIceModulusRatio'"), std::string::npos) << m;
+    EXPECT_NE(m.find("in compression"), std::string::npos) << m;
+    // One that records the ratio holds for it.
+    std::string withRatio = calibrated;
+    const std::string key = "freezeToIceModulusRatio 1;";
+    withRatio.replace(withRatio.find(key), key.size(), key + " freezeCompressionToIceModulusRatio 2;");
+    EXPECT_NO_THROW(propertiesFrom(set4h + withRatio).checkIce(ice, "constant/iceProperties"));
+}
+
+
 TEST(FreezeBondParticleStrength, SharedDictionaryReadsAndMeetsItsShear)
 {
     // cases/common/freezeBondProperties with its #include of freezeBondCalibration

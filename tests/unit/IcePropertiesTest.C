@@ -223,6 +223,22 @@ TEST_F(IcePropertiesFiles, NegativeFamilyModulus)
 }
 
 
+TEST_F(IcePropertiesFiles, CompressionModulusIsOptionalAndPositive)
+{
+    const IceProperties same = IceProperties::read(write(minimalText));
+    EXPECT_DOUBLE_EQ(same.family(BondFamily::ice).compressionModulusOrYoungs(),
+                     same.family(BondFamily::ice).youngsModulus);
+    const IceProperties given = IceProperties::read
+    (
+        write(edited("youngsModulus 5.4e8;", "youngsModulus 5.4e8; compressionModulus 6e8;"), "given")
+    );
+    EXPECT_DOUBLE_EQ(given.family(BondFamily::ice).compressionModulusOrYoungs(), 6e8);
+    const std::string msg = errorReading(edited("youngsModulus 5.4e8;", "youngsModulus 5.4e8; compressionModulus 0;"));
+    EXPECT_CONTAINS(msg, "entry 'bondFamilies.ice.compressionModulus'");
+    EXPECT_CONTAINS(msg, "out of range");
+}
+
+
 TEST_F(IcePropertiesFiles, DistFactorBelowOne)
 {
     const std::string msg = errorReading(edited("distFactor 1.1;", "distFactor 0.9;"));

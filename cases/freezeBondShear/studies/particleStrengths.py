@@ -45,10 +45,15 @@ moduli: --ice-modulus and --freeze-modulus set them in every run, the
 dictionary records their ratio (the program refuses a case of another
 ratio), --dictionary names the file written into cases/common, and --slow
 stretches every test's loading time (compliant bonds respond slower: the
-interface's first period grows as 1/sqrt(E)).
+interface's first period grows as 1/sqrt(E)). --freeze-compression-modulus
+gives the freeze-bonds' normal spring another modulus in compression (a
+bonded pair has no contact: a compliant bond in compression let its particles
+interpenetrate, and the contact that took over when it broke kicked them
+apart); the dictionary records that ratio too.
 
 usage: particleStrengths.py [--jobs 2] [--out DIR] [--rubble SUMMARY.json ...]
-                            [--bonds freezeBonds.csv] [--ice-modulus PA --freeze-modulus PA]
+                            [--bonds freezeBonds.csv] [--ice-modulus PA --freeze-modulus PA
+                            [--freeze-compression-modulus PA]]
                             [--slow FACTOR] [--dictionary NAME] [--publish]"""
 import argparse
 import re
@@ -115,9 +120,11 @@ def rubble_confinement(summaries, bonds_csv):
     return rows, dist
 
 
-def cached(done, tensile, shear, pressure):
-    """Whether a finished run's summary is there and was made with these strengths and pressure."""
-    if not os.path.exists(done):
+def cached(done, tensile, shear, pressure, made_from):
+    """Whether a finished run's summary is there and was made with these strengths and pressure,
+    and with these moduli and loading (made_from, recorded in the run folder's madeFrom)."""
+    stamp = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(done)))), "madeFrom")
+    if not os.path.exists(done) or not os.path.exists(stamp) or open(stamp).read() != made_from:
         return False
     s = json.load(open(done))
     made = (s.get("particle_tensile_strength_Pa", s.get("bond_tensile_strength_mean_Pa")),
@@ -127,15 +134,24 @@ def cached(done, tensile, shear, pressure):
 
 class Runner:
     """Runs the virtual tests, each in its own copy of its case under `out`; resumable
-    (a run whose summary exists, made with the same strengths and pressure, is not repeated)."""
+    (a run whose summary exists, made with the same strengths, pressure, moduli and loading, is not
+    repeated)."""
 
-    def __init__(self, out, ice_modulus=None, freeze_modulus=None, slow=1.0):
+    def __init__(self, out, ice_modulus=None, freeze_modulus=None, slow=1.0, compression_modulus=None):
         """ice_modulus: material and ice bonds; freeze_modulus: freeze-bonds (each None: the case's);
+        compression_modulus: the freeze-bonds' in compression (None: their freeze_modulus);
         slow: every test's loading time multiplied by it."""
         self.out = out
         self.ice_modulus = ice_modulus
         self.freeze_modulus = freeze_modulus
+        self.compression_modulus = compression_modulus
         self.slow = slow
+
+    def _made_from(self, **loading):
+        """What a run is made from besides its strengths and pressure: moduli and loading."""
+        return json.dumps({"ice": self.ice_modulus, "freeze": self.freeze_modulus,
+                           "compression": self.compression_modulus, "loading": {k: float(f"{v:.6g}") for k, v in loading.items()}},
+                          sort_keys=True) + "\n"
 
     def _copy(self, case, work):
         iceCases.copy_case(case, work)
@@ -149,19 +165,29 @@ class Runner:
         for entry, value in moduli.items():
             if value:
                 iceCases.set_entry(ice, entry, f"{value:g}")
+        if self.compression_modulus:
+            iceCases.add_entry(ice, "bondFamilies.freeze.compressionModulus", f"{self.compression_modulus:g}")
 
     def shear(self, label, tensile, shear, pressure, expected, time_to_failure=SHEAR_TIME_TO_FAILURE):
         """expected: the effective shear strength on the bond area guessed beforehand (sets the
         load rate so that the plane fails after about time_to_failure of DEM time)."""
         work = os.path.join(self.out, "shear", label)
         done = os.path.join(work, "postProcessing", "runs", label, "summary.json")
-        if not cached(done, tensile, shear, pressure):
+
+        def load_at(strength):      # N, P at failure for this effective strength on the bond area, roughly
+            return strength / 0.434 * 0.75 * 6.36e-3 * 1.6 + 1.0
+        # The cap allows for the friction of the plane's contacts under the confinement (per bond
+        # about 0.46 x the applied pressure), which the guess (from 0.4 kPa) leaves out.
+        rate = load_at(expected) / (time_to_failure * self.slow)
+        cap = 3 * load_at(expected + 0.3 * 0.46 * pressure)
+        made_from = self._made_from(loadRate=rate, maxLoad=cap)
+        if not cached(done, tensile, shear, pressure, made_from):
             self._copy(SHEAR_CASE, work)
             props = os.path.join(work, "constant", "shearTestProperties")
-            load = expected / 0.434 * 0.75 * 6.36e-3 * 1.6 + 1.0      # N, P at failure, roughly
-            iceCases.set_entry(props, "loading.loadRate", f"{load / (time_to_failure * self.slow):.6g}")
-            iceCases.set_entry(props, "loading.maxLoad", f"{3 * load:.6g}")
+            iceCases.set_entry(props, "loading.loadRate", f"{rate:.6g}")
+            iceCases.set_entry(props, "loading.maxLoad", f"{cap:.6g}")
             iceCases.set_entry(props, "loading.samples", 1000)
+            iceCases.write_atomically(os.path.join(work, "madeFrom"), made_from)
             iceCases.run_app("freezeBondShearDEM", work, 1,
                              ["-label", label, "-tensileStrength", f"{tensile:.6g}", "-shearStrength",
                               f"{shear:.6g}", "-pressure", f"{pressure:.6g}"], "log.freezeBondShearDEM")
@@ -181,16 +207,18 @@ class Runner:
         pull speed so that the peak comes after about time_to_peak of DEM time)."""
         work = os.path.join(self.out, "tension", label)
         done = os.path.join(work, "postProcessing", "runs", label, "summary.json")
-        if not cached(done, tensile, shear, pressure):
+        # pull at the peak about 0.56 um per kPa on the bond area (5.4e8 Pa; scales as 1/E)
+        modulus = self.freeze_modulus or 5.4e8
+        pull = 0.56e-9 * expected * 5.4e8 / modulus
+        speed = pull / (time_to_peak * self.slow)
+        made_from = self._made_from(pullSpeed=speed, maxPull=3 * pull)
+        if not cached(done, tensile, shear, pressure, made_from):
             self._copy(TENSION_CASE, work)
             props = os.path.join(work, "constant", "tensionTestProperties")
-            # pull at the peak about 0.56 um per kPa on the bond area (5.4e8 Pa; scales as 1/E)
-            modulus = self.freeze_modulus or 5.4e8
-            pull = 0.56e-9 * expected * 5.4e8 / modulus
-            speed = pull / (time_to_peak * self.slow)
             iceCases.set_entry(props, "loading.pullSpeed", f"{speed:.6g}")
             iceCases.set_entry(props, "loading.maxPull", f"{3 * pull:.6g}")
             iceCases.set_entry(props, "loading.samples", 1000)
+            iceCases.write_atomically(os.path.join(work, "madeFrom"), made_from)
             iceCases.run_app("freezeBondTensionDEM", work, 1,
                              ["-label", label, "-tensileStrength", f"{tensile:.6g}", "-shearStrength",
                               f"{shear:.6g}", "-pressure", f"{pressure:.6g}"], "log.freezeBondTensionDEM")
@@ -268,6 +296,9 @@ def main():
                     help="Young's modulus of the material and the ice bonds in every run, Pa (default: the cases')")
     ap.add_argument("--freeze-modulus", type=iceCases.positive_number, default=None,
                     help="Young's modulus of the freeze-bonds in every run, Pa (default: the ice's)")
+    ap.add_argument("--freeze-compression-modulus", type=iceCases.positive_number, default=None,
+                    help="the freeze-bonds' modulus in compression, Pa (default: their --freeze-modulus); "
+                         "the blocks bear on each other: the ice's")
     ap.add_argument("--slow", type=iceCases.positive_number, default=1.0,
                     help="every test's loading time multiplied by this (compliant freeze-bonds)")
     ap.add_argument("--sweep-strengths", type=strengths, default=SWEEP_STRENGTHS, metavar="S1,S2,...",
@@ -280,6 +311,8 @@ def main():
     a = ap.parse_args()
     if not {40e3, 160e3} <= set(a.sweep_strengths):
         ap.error("--sweep-strengths: must hold 40000 and 160000 (the sensitivity runs' S_p)")
+    if a.freeze_compression_modulus is not None and a.freeze_modulus is None:
+        ap.error("--freeze-compression-modulus goes with --ice-modulus and --freeze-modulus")
     if (a.ice_modulus is None) != (a.freeze_modulus is None):
         ap.error("--ice-modulus and --freeze-modulus go together (their ratio is what the calibration holds for)")
     if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", a.dictionary):
@@ -302,8 +335,10 @@ def main():
     target = conf_rows[0]["bond_mean_Pa"]
     print(f"rubble confinement on the bond area: {target:.0f} Pa ({conf_rows[0]['source']})", flush=True)
 
-    runner = Runner(a.out, a.ice_modulus, a.freeze_modulus, a.slow)
+    runner = Runner(a.out, a.ice_modulus, a.freeze_modulus, a.slow, a.freeze_compression_modulus)
     modulus_ratio = a.freeze_modulus / a.ice_modulus if a.ice_modulus else 1.0
+    compression = a.freeze_compression_modulus or a.freeze_modulus
+    compression_ratio = compression / a.ice_modulus if a.ice_modulus else 1.0
     pool = concurrent.futures.ThreadPoolExecutor(a.jobs)
 
     # 1. the applied pressure that gives the rubble's per-bond confinement in each test
@@ -339,7 +374,8 @@ def main():
     for test in ("shear", "tension"):
         sens[("old25kPa_rho1", test, 160e3)] = submit(test, "old25kPa_rho1_S160000", 1.0, 160e3, applied=OLD_CONFINEMENT)
         sens[("slower", test, 160e3)] = submit(test, f"slower_rho{rho0:g}_S160000", rho0, 160e3, slow=2.0)
-    soft = Runner(os.path.join(a.out, "modulus1.95e8"), 1.95e8, 1.95e8 * modulus_ratio, a.slow)
+    soft = Runner(os.path.join(a.out, "modulus1.95e8"), 1.95e8, 1.95e8 * modulus_ratio, a.slow,
+                  1.95e8 * compression_ratio if a.freeze_compression_modulus else None)
     for test in ("shear", "tension"):
         sens[("modulus1.95e8", test, 160e3)] = submit(test, f"E1.95e8_rho{rho0:g}_S160000", rho0, 160e3, r=soft)
 
@@ -415,7 +451,7 @@ def main():
                "derived": [{k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items()} for d in derived]}
     iceCases.write_atomically(os.path.join(a.out, "particleStrengths.json"), json.dumps(summary, indent=2) + "\n")
     write_dictionary(os.path.join(a.out, a.dictionary), relation, target, error, cf, derived,
-                     (a.ice_modulus, a.freeze_modulus, a.slow))
+                     (a.ice_modulus, a.freeze_modulus, a.slow, compression))
     write_markdown(os.path.join(a.out, "particleStrengths.md"), conf_rows, dist, pressure, probe_s, probe_t,
                    relation, fit_error, error, sens, rho0, derived, cf, a.sweep_strengths)
     plot(os.path.join(a.out, "particleStrengths.png"), sweep, relation, ratios, derived, sens, rho0, sets, cf,
@@ -434,14 +470,18 @@ def write_csv(path, runs):
 
 def write_dictionary(path, relation, confinement, error, cf, derived, moduli):
     rhos = sorted(relation)
-    ice_modulus, freeze_modulus, slow = moduli
+    ice_modulus, freeze_modulus, slow, compression = moduli
     if ice_modulus:
-        how = (f"freeze-bonds of {freeze_modulus:g} Pa on ice of\n  {ice_modulus:g} Pa"
+        stiffer = compression != freeze_modulus
+        how = (f"freeze-bonds of {freeze_modulus:g} Pa"
+               + (f" ({compression:g} Pa in compression)" if stiffer else "")
+               + f" on ice of\n  {ice_modulus:g} Pa"
                + (f", every test's loading {slow:g} times slower" if slow != 1.0 else "")
-               + f" (--ice-modulus {ice_modulus:g} --freeze-modulus {freeze_modulus:g}).")
-        ratio = freeze_modulus / ice_modulus
+               + f" (--ice-modulus {ice_modulus:g} --freeze-modulus {freeze_modulus:g}"
+               + (f" --freeze-compression-modulus {compression:g}" if stiffer else "") + ").")
+        ratio, compression_ratio = freeze_modulus / ice_modulus, compression / ice_modulus
     else:
-        how, ratio = "freeze and ice bonds of equal modulus.", 1.0
+        how, ratio, compression_ratio = "freeze and ice bonds of equal modulus.", 1.0, 1.0
 
     def column(key, scale=1.0, fmt="{:.4f}"):
         return "(" + " ".join(fmt.format(relation[r][key] * scale) for r in rhos) + ")"
@@ -473,6 +513,7 @@ tensileSlopes           {column('tensileSlope')};
 tensileIntercepts       {column('tensileIntercept', fmt='{:.0f}')};    // Pa
 confinement             {confinement:.0f};        // Pa, per bond on the bond area, in the tests
 freezeToIceModulusRatio {ratio:.6g};
+freezeCompressionToIceModulusRatio {compression_ratio:.6g};
 relativeError           {error:.3f};      // the fits' largest residual or the verification runs' deviation
 
 // ************************************************************************* //

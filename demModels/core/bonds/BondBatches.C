@@ -37,6 +37,7 @@ void BondBatches::set
     batch.loadOfA[l] = batch.loadOfB[l] = 0;
     batch.restLength[l] = state.restLength;
     batch.kNormal[l] = k.normal;
+    batch.kNormalCompression[l] = k.normalCompression;
     batch.kShear[l] = k.shear;
     batch.kTwist[l] = k.twist;
     batch.kBending[l] = k.bending;
@@ -64,7 +65,7 @@ void BondBatches::copyBond(std::size_t from, std::size_t to)
     }
     for (double (BondBatch::*row)[bondKernelLanes] :
         {
-            &BondBatch::restLength, &BondBatch::kNormal, &BondBatch::kShear, &BondBatch::kTwist,
+            &BondBatch::restLength, &BondBatch::kNormal, &BondBatch::kNormalCompression, &BondBatch::kShear, &BondBatch::kTwist,
             &BondBatch::kBending, &BondBatch::twistAngle, &BondBatch::intactNormalForce,
             &BondBatch::intactShearForce2, &BondBatch::intactTwistTorque2, &BondBatch::intactBendingTorque2
         })

@@ -40,6 +40,7 @@ BondStiffness BondStiffness::of
     k.youngsModulus = family.youngsModulus;
     k.shearModulus = k.youngsModulus / (2.0 * (1.0 + family.poissonsRatio));
     k.normal = k.youngsModulus * k.area / k.beamLength;
+    k.normalCompression = family.compressionModulusOrYoungs() * k.area / k.beamLength;
     k.shear = k.shearModulus * k.area / k.beamLength;
     k.twist = k.shearModulus * k.polarInertia / k.beamLength;
     k.bending = k.youngsModulus * k.inertia / k.beamLength;
@@ -211,7 +212,7 @@ double BondModel::potentialEnergy
     const double stretch = (b.position - a.position).norm() - state.restLength;
     return 0.5 *
     (
-        k.normal * stretch * stretch
+        (stretch > 0.0 ? k.normal : k.normalCompression) * stretch * stretch
       + k.shear * state.shearDisplacement.squaredNorm()
       + k.twist * state.twistAngle * state.twistAngle
       + k.bending * state.bendingAngle.squaredNorm()

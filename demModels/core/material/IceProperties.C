@@ -85,7 +85,7 @@ BondFamilyParameters readFamily(const Dictionary& d)
 {
     d.checkKeys
     ({
-        "distFactor", "youngsModulus", "poissonsRatio", "radiusMultiplier",
+        "distFactor", "youngsModulus", "compressionModulus", "poissonsRatio", "radiusMultiplier",
         "strengthModel", "breakN", "beta", "tensileStrength", "shearStrength",
         "twistStrengthFactor", "bendingStrengthFactor", "breakageCriterion", "unbreakable"
     });
@@ -93,6 +93,7 @@ BondFamilyParameters readFamily(const Dictionary& d)
     BondFamilyParameters f;
     f.distFactor = readScalar(d, "distFactor", {1, true, inf, false, "a number >= 1"});
     f.youngsModulus = readScalar(d, "youngsModulus", positive("Pa"));
+    f.compressionModulus = readScalarOrDefault(d, "compressionModulus", positive("Pa"), 0.0);   // 0: youngsModulus
     f.poissonsRatio = readScalar(d, "poissonsRatio", halfOpen(0, 0.5));
     f.radiusMultiplier = readScalar(d, "radiusMultiplier", positive());
 
@@ -205,6 +206,7 @@ IceProperties IceProperties::softenedForAssembly(double youngsModulus, double da
     for (BondFamilyParameters& f : soft.families)
     {
         f.youngsModulus = youngsModulus;
+        f.compressionModulus = 0.0;
         f.unbreakable = true;
     }
     soft.damping.model = DampingModel::hysteretic;

@@ -51,13 +51,13 @@ TimeStepLimits timeStepLimits
         const BondFamilyParameters& family = props.families[f];
         const BondStiffness k = BondStiffness::of(family, minRadius, minRadius);
         const std::string name = toString(static_cast<BondFamily>(f)) + " bond ";
-        consider(name + "normal", mass, k.normal);
+        consider(name + "normal", mass, std::max(k.normal, k.normalCompression));
         consider(name + "shear", mass, k.shear);
         // The shear spring also turns the particle through its lever arm.
         consider(name + "shear (rotation)", rotationalInertia, k.shear * minRadius * minRadius);
         consider(name + "twist", rotationalInertia, k.twist);
         consider(name + "bending", rotationalInertia, k.bending);
-        maxModulus = std::max(maxModulus, family.youngsModulus);
+        maxModulus = std::max({maxModulus, family.youngsModulus, family.compressionModulusOrYoungs()});
     }
 
     limits.recommended = props.timeStep.factor * 2.0 * minRadius * std::sqrt(rho / maxModulus);

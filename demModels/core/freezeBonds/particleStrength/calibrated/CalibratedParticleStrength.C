@@ -36,7 +36,7 @@ CalibratedParticleStrength::CalibratedParticleStrength(const Dictionary& d)
     }
     const Dictionary& c = d.subDict("calibratedCoeffs");
     c.checkKeys({"ratios", "shearSlopes", "shearIntercepts", "tensileSlopes", "tensileIntercepts", "confinement",
-                 "freezeToIceModulusRatio", "relativeError"});
+                 "freezeToIceModulusRatio", "freezeCompressionToIceModulusRatio", "relativeError"});
     ratios_ = c.getScalarList("ratios");
     if (ratios_.empty())
     {
@@ -73,6 +73,10 @@ CalibratedParticleStrength::CalibratedParticleStrength(const Dictionary& d)
     if (confinement_ < 0.0) c.fail("confinement", "must not be negative (Pa)");
     modulusRatio_ = c.getScalar("freezeToIceModulusRatio");
     if (!(modulusRatio_ > 0.0)) c.fail("freezeToIceModulusRatio", "must be positive");
+    // Calibrations made before bonds had a modulus of their own in compression had the same in both.
+    compressionRatio_ = c.found("freezeCompressionToIceModulusRatio")
+                      ? c.getScalar("freezeCompressionToIceModulusRatio") : modulusRatio_;
+    if (!(compressionRatio_ > 0.0)) c.fail("freezeCompressionToIceModulusRatio", "must be positive");
     relativeError_ = c.getScalar("relativeError");
     if (relativeError_ < 0.0) c.fail("relativeError", "must not be negative");
 }
@@ -140,15 +144,22 @@ BondStrengthPair CalibratedParticleStrength::effective(const BondStrengthPair& p
 
 void CalibratedParticleStrength::checkIce(const IceProperties& ice, const std::string& iceFile) const
 {
-    const double ratio = ice.family(BondFamily::freeze).youngsModulus/ice.family(BondFamily::ice).youngsModulus;
-    if (std::abs(ratio/modulusRatio_ - 1.0) > 0.02)
+    const double iceModulus = ice.family(BondFamily::ice).youngsModulus;
+    const BondFamilyParameters& freeze = ice.family(BondFamily::freeze);
+    auto check = [&](double ratio, double calibrated, const std::string& what, const std::string& entry)
     {
-        std::ostringstream msg;
-        msg << "the calibration holds for freeze-bonds of " << modulusRatio_ << " times the ice bonds' modulus; "
-            << iceFile << " (bondFamilies freeze and ice) gives " << ratio
-            << ": rerun the study at that ratio or use particleStrengths direct";
-        throw InputError(fileName(), "calibratedCoeffs.freezeToIceModulusRatio", msg.str());
-    }
+        if (std::abs(ratio/calibrated - 1.0) > 0.02)
+        {
+            std::ostringstream msg;
+            msg << "the calibration holds for freeze-bonds of " << calibrated << " times the ice bonds' modulus "
+                << what << "; " << iceFile << " (bondFamilies freeze and ice) gives " << ratio
+                << ": rerun the study at that ratio or use particleStrengths direct";
+            throw InputError(fileName(), "calibratedCoeffs." + entry, msg.str());
+        }
+    };
+    check(freeze.youngsModulus/iceModulus, modulusRatio_, "(youngsModulus)", "freezeToIceModulusRatio");
+    check(freeze.compressionModulusOrYoungs()/iceModulus, compressionRatio_, "in compression (compressionModulus)",
+          "freezeCompressionToIceModulusRatio");
 }
 
 
