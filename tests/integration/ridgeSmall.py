@@ -13,7 +13,8 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
             / (L B)
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
   badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
-            message naming the entry and a non-zero exit
+            message naming the entry and a non-zero exit; a particle faster than the
+            controlDict's maxParticleSpeed stops the run, naming particle, place and time
   resumeInertia  the same with the inertia scaled by 10 (test.inertiaScaling): settled with the
             true inertia, loaded with the scaled one, resumed to the last bit
   faults    (f) a punch SIGKILLed three times, each a random moment after a new checkpoint,
@@ -363,6 +364,22 @@ def bad_input(work, bin_dir):
             at = text.index("\ntest\n{") + len("\ntest\n{")
             open(path, "w").write(text[:at] + f"\n    inertiaScaling {value};" + text[at:])
         return edit
+    def control(entry, value):
+        def edit(path):
+            iceCases.add_entry(os.path.join(os.path.dirname(os.path.dirname(path)), "system", "controlDict"), entry, value)
+        return edit
+    expect("negativeMaxParticleSpeed", control("maxParticleSpeed", -1), ["controlDict", "maxParticleSpeed", ">= 0"])
+
+    # A run that blows up stops: here every particle the platen sets moving is "too fast".
+    fast = ridge_case("rubblePunch", os.path.join(bad, "tooFast"), work,
+                      controls=(("maxTravel", 0.006), ("maxParticleSpeed", 1e-4)), entries=PUNCH_ENTRIES)
+    r = subprocess.run(["mpirun", "-np", "1", "--oversubscribe", app, "-case", fast, "-stage", "all"],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    words = ["particle", "faster than maxParticleSpeed 0.0001 m/s", "at time", "blown up"]
+    check(r.returncode != 0 and all(w in r.stdout for w in words),
+          f"tooFast: exit {r.returncode}, message names {words}: "
+          + next((line for line in r.stdout.splitlines() if "maxParticleSpeed" in line), r.stdout[-300:]).strip())
+
     expect("inertiaInKeelBondTest", inertia(10), ["ridgeProperties", "test.inertiaScaling",
                                                  "integrates no particle's motion"])
     expect("inertiaBelowOne", inertia(0.5), ["ridgeProperties", "test.inertiaScaling", "[1, 10000]"])

@@ -46,6 +46,22 @@ const std::string calibrated = R"(
     }
 )";
 
+// The same two ratios as measured points: S_eff at S_p 10, 20, 40 kPa (a bending
+// relation, friction first), T_eff at T_p = rho S_p.
+const std::string measuredPoints = R"(
+    particleStrengths calibrated;
+    calibratedCoeffs
+    {
+        ratios              (0.25 2.5);
+        particleShears      (10e3 20e3 40e3);
+        effectiveShears     (17e3 27e3 45e3    20e3 40e3 80e3);
+        effectiveTensiles   (2e3 5e3 11e3      25e3 50e3 100e3);
+        confinement             15000;
+        freezeToIceModulusRatio 1;
+        relativeError           0.05;
+    }
+)";
+
 FreezeBondProperties propertiesFrom(const std::string& text)
 {
     return FreezeBondProperties::fromDictionary(Dictionary::parse(text, "constant/freezeBondProperties"));
@@ -110,6 +126,49 @@ TEST(FreezeBondParticleStrength, CalibratedMeetsTheShearAndKeepsTheRatio)
     EXPECT_NEAR(back.tensile, tensileSlope*s.tensile + tensileIntercept, 1e-9*back.tensile);
     EXPECT_NE(p.summary().find("particle strengths calibrated (virtual tests at 0.4 kPa on the bond area"),
               std::string::npos) << p.summary();
+}
+
+
+TEST(FreezeBondParticleStrength, MeasuredPointsAreInterpolatedAndInverted)
+{
+    const auto p = propertiesFrom(set4h + measuredPoints);
+    const FreezeBondParticleStrength& relation = p.particleStrength();
+    // At the first ratio the points themselves, between them the segment, beyond them the end segment.
+    EXPECT_NEAR(relation.effective({0.25*20e3, 20e3}).shear, 27e3, 1e-6);
+    EXPECT_NEAR(relation.effective({0.25*20e3, 20e3}).tensile, 5e3, 1e-6);
+    EXPECT_NEAR(relation.effective({0.25*30e3, 30e3}).shear, 36e3, 1e-6);
+    EXPECT_NEAR(relation.effective({0.25*50e3, 50e3}).shear, 54e3, 1e-6);
+    EXPECT_NEAR(relation.particle({0.25*36e3, 36e3}).shear, 30e3, 1e-6);
+    EXPECT_NEAR(relation.particle({0.25*36e3, 36e3}).tensile, 0.25*30e3, 1e-6);
+    // Between the ratios each point's effective strength is interpolated, at the same S_p.
+    const double rho = 1.375, w = 0.5;
+    EXPECT_NEAR(relation.effective({rho*20e3, 20e3}).shear, 27e3 + w*(40e3 - 27e3), 1e-6);
+    // The case's set (rho 0.3029) goes there and back.
+    const FreezeBondStrength s = p.strength(0.5, bondArea);
+    const BondStrengthPair back = relation.effective({s.tensile, s.shear});
+    EXPECT_NEAR(back.shear, s.effectiveShear, 1e-9*s.effectiveShear);
+    EXPECT_NEAR(s.tensile/s.shear, 26.9/88.8, 1e-12);
+    EXPECT_NE(p.summary().find("the measured points"), std::string::npos) << p.summary();
+}
+
+
+TEST(FreezeBondParticleStrength, MeasuredPointsMustRise)
+{
+    std::string text = measuredPoints;
+    const std::string row = "17e3 27e3 45e3";
+    text.replace(text.find(row), row.size(), "17e3 27e3 26e3");
+    const std::string m = messageOf([&] { propertiesFrom(set4h + text); });
+    EXPECT_NE(m.find("entry 'calibratedCoeffs.effectiveShears'"), std::string::npos) << m;
+    EXPECT_NE(m.find("row 1 (ratio 0.25) must rise"), std::string::npos) << m;
+    std::string shortRow = measuredPoints;
+    shortRow.replace(shortRow.find(row), row.size(), "17e3 27e3");
+    const std::string n = messageOf([&] { propertiesFrom(set4h + shortRow); });
+    EXPECT_NE(n.find("6 values"), std::string::npos) << n;
+    // Friction alone gives more shear than asked: no particle strength can give less.
+    std::string weak = set4h + measuredPoints;
+    weak.replace(weak.find("tensile 26.9e3; shear 88.8e3"), 28, "tensile 2.69e3; shear 8.88e3");
+    const std::string f = messageOf([&] { propertiesFrom(weak).strength(0.5, bondArea); });
+    EXPECT_NE(f.find("with no bond strength at all"), std::string::npos) << f;
 }
 
 

@@ -22,6 +22,17 @@ std::string kPa(double pascals)
     return out.str();
 }
 
+//- y(x) on the polyline through (xs, ys), extended along its end segments.
+double alongPolyline(const std::vector<double>& xs, const std::vector<double>& ys, double x)
+{
+    std::size_t k = 1;
+    while (k + 1 < xs.size() && xs[k] < x)
+    {
+        ++k;
+    }
+    return ys[k - 1] + (ys[k] - ys[k - 1])*(x - xs[k - 1])/(xs[k] - xs[k - 1]);
+}
+
 } // namespace
 
 
@@ -35,7 +46,8 @@ CalibratedParticleStrength::CalibratedParticleStrength(const Dictionary& d)
             "(cases/common/freezeBondCalibration)");
     }
     const Dictionary& c = d.subDict("calibratedCoeffs");
-    c.checkKeys({"ratios", "shearSlopes", "shearIntercepts", "tensileSlopes", "tensileIntercepts", "confinement",
+    c.checkKeys({"ratios", "shearSlopes", "shearIntercepts", "tensileSlopes", "tensileIntercepts",
+                 "particleShears", "effectiveShears", "effectiveTensiles", "confinement",
                  "freezeToIceModulusRatio", "freezeCompressionToIceModulusRatio", "relativeError"});
     ratios_ = c.getScalarList("ratios");
     if (ratios_.empty())
@@ -65,10 +77,18 @@ CalibratedParticleStrength::CalibratedParticleStrength(const Dictionary& d)
         }
         return v;
     };
-    shearSlopes_ = column("shearSlopes", true);
-    shearIntercepts_ = column("shearIntercepts", false);
-    tensileSlopes_ = column("tensileSlopes", true);
-    tensileIntercepts_ = column("tensileIntercepts", false);
+    points_ = c.found("particleShears");
+    if (points_)
+    {
+        readPoints(c);
+    }
+    else
+    {
+        shearSlopes_ = column("shearSlopes", true);
+        shearIntercepts_ = column("shearIntercepts", false);
+        tensileSlopes_ = column("tensileSlopes", true);
+        tensileIntercepts_ = column("tensileIntercepts", false);
+    }
     confinement_ = c.getScalar("confinement");
     if (confinement_ < 0.0) c.fail("confinement", "must not be negative (Pa)");
     modulusRatio_ = c.getScalar("freezeToIceModulusRatio");
@@ -82,7 +102,56 @@ CalibratedParticleStrength::CalibratedParticleStrength(const Dictionary& d)
 }
 
 
-CalibratedParticleStrength::Coefficients CalibratedParticleStrength::at(double rho) const
+void CalibratedParticleStrength::readPoints(const Dictionary& c)
+{
+    for (const char* key : {"shearSlopes", "shearIntercepts", "tensileSlopes", "tensileIntercepts"})
+    {
+        if (c.found(key))
+        {
+            c.fail(key, "the points form (particleShears) and the lines form exclude each other");
+        }
+    }
+    particleShears_ = c.getScalarList("particleShears");
+    if (particleShears_.size() < 2)
+    {
+        c.fail("particleShears", "needs at least two particle shear strengths S_p");
+    }
+    for (std::size_t k = 0; k < particleShears_.size(); ++k)
+    {
+        if (!(particleShears_[k] > 0.0) || (k > 0 && !(particleShears_[k] > particleShears_[k - 1])))
+        {
+            c.fail("particleShears", "must be positive and increasing (Pa)");
+        }
+    }
+    const std::size_t m = particleShears_.size();
+    auto table = [&](const std::string& key)
+    {
+        const std::vector<double> v = c.getScalarList(key);
+        if (v.size() != ratios_.size()*m)
+        {
+            c.fail(key, "needs one row of " + std::to_string(m) + " values (one per particleShears) for each of the "
+                + std::to_string(ratios_.size()) + " ratios: " + std::to_string(ratios_.size()*m) + " values");
+        }
+        for (std::size_t r = 0; r < ratios_.size(); ++r)
+        {
+            for (std::size_t k = 1; k < m; ++k)
+            {
+                if (!(v[r*m + k] > v[r*m + k - 1]))
+                {
+                    std::ostringstream msg;
+                    msg << "row " << r + 1 << " (ratio " << ratios_[r] << ") must rise with the particle strength";
+                    c.fail(key, msg.str());
+                }
+            }
+        }
+        return v;
+    };
+    effectiveShears_ = table("effectiveShears");
+    effectiveTensiles_ = table("effectiveTensiles");
+}
+
+
+std::pair<std::size_t, double> CalibratedParticleStrength::ratioSegment(double rho) const
 {
     const double tolerance = 1e-9;
     if (!(rho >= ratios_.front()*(1 - tolerance) && rho <= ratios_.back()*(1 + tolerance)))
@@ -92,18 +161,48 @@ CalibratedParticleStrength::Coefficients CalibratedParticleStrength::at(double r
             << " to " << ratios_.back() << "): rerun the study at it";
         throw InputError(fileName(), "calibratedCoeffs.ratios", msg.str());
     }
+    if (ratios_.size() == 1)
+    {
+        return {0, 0.0};
+    }
     std::size_t k = 1;
     while (k + 1 < ratios_.size() && ratios_[k] < rho)
     {
         ++k;
     }
+    return {k, std::clamp((rho - ratios_[k - 1])/(ratios_[k] - ratios_[k - 1]), 0.0, 1.0)};
+}
+
+
+CalibratedParticleStrength::Coefficients CalibratedParticleStrength::at(double rho) const
+{
+    const auto [k, w] = ratioSegment(rho);
     if (ratios_.size() == 1)
     {
         return {shearSlopes_[0], shearIntercepts_[0], tensileSlopes_[0], tensileIntercepts_[0]};
     }
-    const double w = std::clamp((rho - ratios_[k - 1])/(ratios_[k] - ratios_[k - 1]), 0.0, 1.0);
-    auto lerp = [&](const std::vector<double>& v) { return v[k - 1] + w*(v[k] - v[k - 1]); };
+    auto lerp = [&, k = k, w = w](const std::vector<double>& v) { return v[k - 1] + w*(v[k] - v[k - 1]); };
     return {lerp(shearSlopes_), lerp(shearIntercepts_), lerp(tensileSlopes_), lerp(tensileIntercepts_)};
+}
+
+
+CalibratedParticleStrength::Points CalibratedParticleStrength::pointsAt(double rho) const
+{
+    const auto [k, w] = ratioSegment(rho);
+    const std::size_t m = particleShears_.size();
+    Points p;
+    p.particleShears = particleShears_;
+    for (std::size_t j = 0; j < m; ++j)
+    {
+        auto lerp = [&, k = k, w = w](const std::vector<double>& v)
+        {
+            return ratios_.size() == 1 ? v[j] : v[(k - 1)*m + j] + w*(v[k*m + j] - v[(k - 1)*m + j]);
+        };
+        p.effectiveShears.push_back(lerp(effectiveShears_));
+        p.effectiveTensiles.push_back(lerp(effectiveTensiles_));
+        p.particleTensiles.push_back(rho*particleShears_[j]);
+    }
+    return p;
 }
 
 
@@ -115,17 +214,29 @@ BondStrengthPair CalibratedParticleStrength::particle(const BondStrengthPair& e)
             "calibrated needs positive effective strengths (tensile " + kPa(e.tensile) + ", shear " + kPa(e.shear) + ")");
     }
     const double rho = e.tensile/e.shear;
-    const Coefficients c = at(rho);
     BondStrengthPair p;
-    p.shear = (e.shear - c.shearIntercept)/c.shearSlope;
+    double withoutBonds = 0.0;      // S_eff the relation gives at S_p = 0: the confinement's friction
+    if (points_)
+    {
+        const Points q = pointsAt(rho);
+        p.shear = alongPolyline(q.effectiveShears, q.particleShears, e.shear);
+        withoutBonds = alongPolyline(q.particleShears, q.effectiveShears, 0.0);
+    }
+    else
+    {
+        const Coefficients c = at(rho);
+        p.shear = (e.shear - c.shearIntercept)/c.shearSlope;
+        withoutBonds = c.shearIntercept;
+    }
     p.tensile = rho*p.shear;
     if (!(p.shear > 0.0))
     {
         std::ostringstream msg;
         msg << "the calibration cannot give an effective shear strength of " << kPa(e.shear)
-            << " on the bond area: the virtual shear test gives " << kPa(c.shearIntercept)
+            << " on the bond area: the virtual shear test gives " << kPa(withoutBonds)
             << " with no bond strength at all (the confinement's friction)";
-        throw InputError(fileName(), "calibratedCoeffs.shearIntercepts", msg.str());
+        throw InputError(fileName(), points_ ? "calibratedCoeffs.effectiveShears" : "calibratedCoeffs.shearIntercepts",
+                         msg.str());
     }
     return p;
 }
@@ -136,6 +247,12 @@ BondStrengthPair CalibratedParticleStrength::effective(const BondStrengthPair& p
     if (!(p.tensile > 0.0 && p.shear > 0.0))
     {
         return {0.0, 0.0};
+    }
+    if (points_)
+    {
+        const Points q = pointsAt(p.tensile/p.shear);
+        return {alongPolyline(q.particleTensiles, q.effectiveTensiles, p.tensile),
+                alongPolyline(q.particleShears, q.effectiveShears, p.shear)};
     }
     const Coefficients c = at(p.tensile/p.shear);
     return {c.tensileSlope*p.tensile + c.tensileIntercept, c.shearSlope*p.shear + c.shearIntercept};
@@ -174,7 +291,8 @@ std::string CalibratedParticleStrength::summary() const
 {
     std::ostringstream out;
     out << "particle strengths calibrated (virtual tests at " << kPa(confinement_) << " on the bond area, "
-        << ratios_.size() << " ratios T_p/S_p from " << ratios_.front() << " to " << ratios_.back() << ", +- "
+        << ratios_.size() << " ratios T_p/S_p from " << ratios_.front() << " to " << ratios_.back()
+        << (points_ ? ", the measured points" : ", straight lines") << ", +- "
         << 100*relativeError_ << " %)";
     return out.str();
 }
