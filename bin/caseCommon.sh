@@ -97,6 +97,39 @@ keel_file() {
     fi
 }
 
+# inputs_fingerprint PATH... -- WORD...: a digest of the files under each PATH (names
+# and contents) and of the WORDs (a run's own settings). A run folder records the
+# fingerprint of what it was made from (RUN/madeFrom), so that a finished run, or a
+# checkpoint, is never reused once the case, ../common or the keel changed.
+inputs_fingerprint() {
+    local paths=()
+    while [ $# -gt 0 ] && [ "$1" != -- ]; do paths+=("$1"); shift; done
+    shift
+    { find "${paths[@]}" -type f -print0 | sort -z | xargs -0 sha256sum; echo "$*"; } | sha256sum | cut -c1-16
+}
+
+# reuse_run RUN FINGERPRINT RESUMING: what to do with an existing run folder RUN for
+# inputs of FINGERPRINT: prints "done" (finished from these inputs), "resume" (not
+# finished, these inputs, RESUMING yes) or "make" (anything else; a run of other
+# inputs is removed with a message, and resuming it is refused).
+reuse_run() {
+    local run="$1" made="$2" resuming="$3"
+    [ -d "$run" ] || { echo make; return; }
+    if [ "$(cat "$run/madeFrom" 2>/dev/null)" != "$made" ]; then
+        if [ "$resuming" = yes ]; then
+            echo "$run was made from other inputs (the case's dictionaries, ../common or the keel changed since): it cannot be resumed; run without -resume" >&2
+            exit 1
+        fi
+        echo "$run was made from other inputs (the case's dictionaries, ../common or the keel changed since): made again" >&2
+        rm -rf "$run"
+        echo make; return
+    fi
+    if result_complete "$run"; then echo done
+    elif [ "$resuming" = yes ]; then echo resume
+    else echo make
+    fi
+}
+
 # build_keel KEEL RESUME COMMAND...: the keel KEEL settled (COMMAND -case KEEL
 # -stage settle [RESUME], log KEEL/log.rubbleDEM) unless DEM/settled.h5 is there,
 # then compacted (-stage compact, log KEEL/log.compact) where it compacts, unless

@@ -289,6 +289,9 @@ def main():
         os.path.join(TOP, "cases", "rubbleBeam", "results", "summary_cuboid.json"),
         os.path.join(TOP, "cases", "rubbleBeam", "results", "summary_empirical.json")],
         help="rubble summaries whose mean confinement the tests take (the first one's)")
+    ap.add_argument("--confinement", type=iceCases.positive_number, default=None,
+                    help="the confinement per bond on the bond area the tests take, Pa, instead of the first "
+                         "rubble summary's mean at bonding (e.g. the floating rubble's while it is loaded)")
     ap.add_argument("--bonds", help="a rubbleBeam run's postProcessing/freezeBonds.csv (distribution, reported)")
     ap.add_argument("--area-correction", type=iceCases.positive_number, default=None,
                     help="c_f of the derived table (default: cases/common/freezeBondProperties')")
@@ -304,6 +307,9 @@ def main():
     ap.add_argument("--sweep-strengths", type=strengths, default=SWEEP_STRENGTHS, metavar="S1,S2,...",
                     help="particle shear strengths S_p of the sweep, Pa (default %(default)s; compliant "
                          "freeze-bonds slip millimetres before the strongest break)")
+    ap.add_argument("--relation", choices=["lines", "points"], default="lines",
+                    help="what the dictionary holds: a straight line per ratio (lines), or the measured points "
+                         "(points; where the relation bends: compliant bonds at the compacted rubble's confinement)")
     ap.add_argument("--dictionary", default="freezeBondCalibration",
                     help="name of the calibratedCoeffs dictionary written (and published into cases/common)")
     ap.add_argument("--publish", action="store_true",
@@ -332,8 +338,9 @@ def main():
                                                        "areaCorrection.value"))
     sets = read_sets()
     conf_rows, dist = rubble_confinement(a.rubble, a.bonds)
-    target = conf_rows[0]["bond_mean_Pa"]
-    print(f"rubble confinement on the bond area: {target:.0f} Pa ({conf_rows[0]['source']})", flush=True)
+    target = a.confinement or conf_rows[0]["bond_mean_Pa"]
+    print(f"confinement on the bond area: {target:.0f} Pa "
+          f"({'--confinement' if a.confinement else conf_rows[0]['source']})", flush=True)
 
     runner = Runner(a.out, a.ice_modulus, a.freeze_modulus, a.slow, a.freeze_compression_modulus)
     modulus_ratio = a.freeze_modulus / a.ice_modulus if a.ice_modulus else 1.0
@@ -397,19 +404,34 @@ def main():
                          "tensileSlope": st, "tensileIntercept": bt, "tensileError": et}
     ratios = sorted(relation)
     error = max(max(r["shearError"], r["tensileError"]) for r in relation.values())
+    points = measured_points(sweep, relation, a.sweep_strengths) if a.relation == "points" else None
 
     def coefficients(rho):
         keys = sorted(relation)
         return {k: float(np.interp(rho, keys, [relation[x][k] for x in keys])) for k in relation[keys[0]]}
 
+    def rows_at(rho):
+        """The measured points at rho, interpolated between ratios at each S_p (the program's pointsAt)."""
+        keys = sorted(points)
+        return ([float(np.interp(rho, keys, [points[x]["shear"][j] for x in keys])) for j in range(len(a.sweep_strengths))],
+                [float(np.interp(rho, keys, [points[x]["tension"][j] for x in keys])) for j in range(len(a.sweep_strengths))])
+
     def invert(t_eff, s_eff):
         rho = t_eff / s_eff
+        if points:
+            s_p = along_polyline(rows_at(rho)[0], a.sweep_strengths, s_eff)
+            return rho * s_p, s_p
         c = coefficients(rho)
         s_p = (s_eff - c["shearIntercept"]) / c["shearSlope"]
         return rho * s_p, s_p
 
     def forward(t_p, s_p):
-        c = coefficients(t_p / s_p)
+        rho = t_p / s_p
+        if points:
+            shear, tension = rows_at(rho)
+            return (along_polyline([rho * s for s in a.sweep_strengths], tension, t_p),
+                    along_polyline(a.sweep_strengths, shear, s_p))
+        c = coefficients(rho)
         return c["tensileSlope"] * t_p + c["tensileIntercept"], c["shearSlope"] * s_p + c["shearIntercept"]
 
     # 4. inversion and verification
@@ -428,9 +450,11 @@ def main():
     checks = {}
     for d in derived:
         tag = f"check_{d['set']}_{d['choice'].split()[0]}"
-        checks[(tag, "shear")] = pool.submit(runner.shear, tag, d["T_p"], d["S_p"], pressure["shear"], d["pred"][1])
-        checks[(tag, "tension")] = pool.submit(runner.tension, tag, d["T_p"], d["S_p"], pressure["tension"],
-                                               d["pred"][0])
+        # guesses kept positive: they set the load rate and its cap only
+        checks[(tag, "shear")] = pool.submit(attempt, runner.shear, tag, d["T_p"], d["S_p"], pressure["shear"],
+                                             max(d["pred"][1], 0.5 * d["S_p"]))
+        checks[(tag, "tension")] = pool.submit(attempt, runner.tension, tag, d["T_p"], d["S_p"], pressure["tension"],
+                                               max(d["pred"][0], 0.5 * d["T_p"]))
     checks = {k: f.result() for k, f in checks.items()}
     runs += list(checks.values())
     for d in derived:
@@ -438,9 +462,10 @@ def main():
         d["check"] = tuple(checks[(tag, test)].get("effective_Pa", float("nan")) for test in ("tension", "shear"))
     # The stated error: the fits' largest residual or the verification runs' largest
     # deviation from the relation, whichever is larger.
+    # (The measured points hold the sweep exactly: their error is the verification runs'.)
     fit_error = error
-    error = max([fit_error] + [abs(d["check"][k] / d["pred"][k] - 1) for d in derived for k in (0, 1)
-                               if math.isfinite(d["check"][k])])
+    error = max([0.0 if points else fit_error] + [abs(d["check"][k] / d["pred"][k] - 1) for d in derived for k in (0, 1)
+                                                  if math.isfinite(d["check"][k])])
 
     write_csv(os.path.join(a.out, "particleStrengths.csv"), runs)
     summary = {"case": "freezeBondShear", "study": "particleStrengths", "area_correction": cf,
@@ -448,15 +473,52 @@ def main():
                "rubble_confinement": conf_rows, "rubble_confinement_distribution": dist,
                "calibration_confinement_Pa": target, "applied_pressure_Pa": pressure,
                "relation": {f"{rho:g}": r for rho, r in sorted(relation.items())}, "relative_error": error,
+               "relation_form": a.relation,
+               "points": ({f"{rho:g}": p for rho, p in sorted(points.items())} if points else None),
                "derived": [{k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items()} for d in derived]}
     iceCases.write_atomically(os.path.join(a.out, "particleStrengths.json"), json.dumps(summary, indent=2) + "\n")
     write_dictionary(os.path.join(a.out, a.dictionary), relation, target, error, cf, derived,
-                     (a.ice_modulus, a.freeze_modulus, a.slow, compression))
+                     (a.ice_modulus, a.freeze_modulus, a.slow, compression), points, a.sweep_strengths,
+                     f"--confinement {a.confinement:g}" if a.confinement else
+                     "c_f p_c of cases/rubbleBeam's cuboid rubble at bonding")
     write_markdown(os.path.join(a.out, "particleStrengths.md"), conf_rows, dist, pressure, probe_s, probe_t,
-                   relation, fit_error, error, sens, rho0, derived, cf, a.sweep_strengths)
+                   relation, fit_error, error, sens, rho0, derived, cf, a.sweep_strengths, forward, points)
     plot(os.path.join(a.out, "particleStrengths.png"), sweep, relation, ratios, derived, sens, rho0, sets, cf,
-         a.sweep_strengths)
+         a.sweep_strengths, points)
     print(open(os.path.join(a.out, "particleStrengths.md")).read())
+
+
+def along_polyline(xs, ys, x):
+    """y(x) on the polyline through (xs, ys), extended along its end segments (the program's)."""
+    k = 1
+    while k + 1 < len(xs) and xs[k] < x:
+        k += 1
+    return ys[k - 1] + (ys[k] - ys[k - 1]) * (x - xs[k - 1]) / (xs[k] - xs[k - 1])
+
+
+def measured_points(sweep, relation, strengths):
+    """{rho: {"shear": S_eff at each S_p, "tension": T_eff at each rho S_p, "filled": [...]}} of every
+    ratio of the relation; a sweep run that failed is filled from its ratio's straight line (named in
+    "filled"). Each row must rise with the particle strength (the program refuses one that does not)."""
+    points = {}
+    for rho, line in sorted(relation.items()):
+        row = {"shear": [], "tension": [], "filled": []}
+        for s_p in strengths:
+            for test, key, x in (("shear", "shear", s_p), ("tension", "tensile", rho * s_p)):
+                run = sweep[(test, rho, s_p)]
+                if succeeded(run):
+                    row[test].append(run["effective_Pa"])
+                else:
+                    row[test].append(line[key + "Slope"] * x + line[key + "Intercept"])
+                    row["filled"].append(f"{test} S_p {s_p:g}")
+        for test in ("shear", "tension"):
+            values = row[test]
+            if any(b <= a for a, b in zip(values, values[1:])):
+                sys.exit(f"particleStrengths: at rho {rho:g} the {test} test's effective strengths do not rise with "
+                         f"S_p {list(strengths)}: {[round(v) for v in values]} Pa (scatter larger than the steps: "
+                         f"choose --sweep-strengths further apart, or --relation lines)")
+        points[rho] = row
+    return points
 
 
 def write_csv(path, runs):
@@ -468,7 +530,8 @@ def write_csv(path, runs):
     iceCases.write_atomically(path, "\n".join(lines) + "\n")
 
 
-def write_dictionary(path, relation, confinement, error, cf, derived, moduli):
+def write_dictionary(path, relation, confinement, error, cf, derived, moduli, points=None, strengths=None,
+                     source="c_f p_c of cases/rubbleBeam's cuboid rubble at bonding"):
     rhos = sorted(relation)
     ice_modulus, freeze_modulus, slow, compression = moduli
     if ice_modulus:
@@ -490,16 +553,35 @@ def write_dictionary(path, relation, confinement, error, cf, derived, moduli):
         f"      {d['set']:<9} {d['choice']:<16} effective {kpa(d['T_eff']):>6} / {kpa(d['S_eff']):>6} kPa"
         f" -> particle {kpa(d['T_p']):>6} / {kpa(d['S_p']):>6} kPa (virtual tests: {kpa(d['pred'][0])} / "
         f"{kpa(d['pred'][1])} kPa)" for d in derived if not d["choice"].startswith("direct"))
+    if points:
+        form = ("  At each particle ratio rho = T_p / S_p, on the bond area, the measured S_eff at\n"
+                "  the sweep's S_p and T_eff at T_p = rho S_p (the relation bends: friction\n"
+                "  under the confinement first), interpolated between them (--relation points)."
+                + ("\n  Filled from the ratio's straight line where a run failed: "
+                   + "; ".join(f"rho {r:g}: " + ", ".join(points[r]["filled"]) for r in rhos if points[r]["filled"])
+                   if any(points[r]["filled"] for r in rhos) else ""))
+
+        def table_rows(key):
+            return "\n".join("    " + " ".join(f"{v:.0f}" for v in points[r][key]) for r in rhos)
+        body = (f"particleShears          ({' '.join(f'{s:g}' for s in strengths)});    // S_p of the sweep, Pa\n"
+                f"effectiveShears         // Pa, one row per ratio\n(\n{table_rows('shear')}\n);\n"
+                f"effectiveTensiles       // Pa at T_p = rho S_p, one row per ratio\n(\n{table_rows('tension')}\n);")
+    else:
+        form = ("  At each particle ratio rho = T_p / S_p, on the bond area:\n"
+                "      S_eff = shearSlope S_p + shearIntercept\n"
+                "      T_eff = tensileSlope T_p + tensileIntercept")
+        body = (f"shearSlopes             {column('shearSlope')};\n"
+                f"shearIntercepts         {column('shearIntercept', fmt='{:.0f}')};    // Pa\n"
+                f"tensileSlopes           {column('tensileSlope')};\n"
+                f"tensileIntercepts       {column('tensileIntercept', fmt='{:.0f}')};    // Pa")
     text = f"""/*--------------------------------*- C++ -*----------------------------------*\\
   Our calibration of particle-level freeze-bond strengths (physics.md
   section 5, "From effective to particle strengths"), written by
   cases/freezeBondShear/studies/particleStrengths.py (see its README
   section there): the virtual shear and tension tests run at the rubble's
-  confinement, {confinement:.0f} Pa per bond on the bond area (c_f p_c of
-  cases/rubbleBeam's cuboid rubble), {how}
-  At each particle ratio rho = T_p / S_p, on the bond area:
-      S_eff = shearSlope S_p + shearIntercept
-      T_eff = tensileSlope T_p + tensileIntercept
+  confinement, {confinement:.0f} Pa per bond on the bond area ({source}),
+  {how}
+{form}
   Included into calibratedCoeffs by cases/common/freezeBondProperties and
   the rubble beam's; selected by `particleStrengths calibrated;`.
   With c_f = {cf:g} (tensile / shear):
@@ -507,14 +589,11 @@ def write_dictionary(path, relation, confinement, error, cf, derived, moduli):
 \\*---------------------------------------------------------------------------*/
 
 ratios                  ({' '.join(f'{r:g}' for r in rhos)});    // rho = T_p / S_p
-shearSlopes             {column('shearSlope')};
-shearIntercepts         {column('shearIntercept', fmt='{:.0f}')};    // Pa
-tensileSlopes           {column('tensileSlope')};
-tensileIntercepts       {column('tensileIntercept', fmt='{:.0f}')};    // Pa
+{body}
 confinement             {confinement:.0f};        // Pa, per bond on the bond area, in the tests
 freezeToIceModulusRatio {ratio:.6g};
 freezeCompressionToIceModulusRatio {compression_ratio:.6g};
-relativeError           {error:.3f};      // the fits' largest residual or the verification runs' deviation
+relativeError           {error:.3f};      // {"the verification runs' largest deviation" if points else "the fits' largest residual or the verification runs' deviation"}
 
 // ************************************************************************* //
 """
@@ -522,7 +601,8 @@ relativeError           {error:.3f};      // the fits' largest residual or the v
 
 
 def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, fit_error, error, sens, rho0, derived,
-                   cf, sweep_strengths):
+                   cf, sweep_strengths, forward, points):
+    """forward(t_p, s_p): the (T_eff, S_eff) the dictionary's relation gives (lines or points)."""
     md = ["## Confinement", "",
           "| rubble | freeze-bonds | c_f | p_c on the real area: mean / max (kPa) | per bond on the bond area, c_f p_c: mean (kPa) |",
           "|---|---|---|---|---|"]
@@ -538,6 +618,8 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
            f"(probe: {probe_s['confinement_Pa']:.0f} Pa per bond at {probe_s['applied_Pa']:.0f} Pa applied), tension "
            f"test {pressure['tension']:.0f} Pa (probe: {probe_t['confinement_Pa']:.0f} Pa at {probe_t['applied_Pa']:.0f} Pa).",
            "", "## Relation at the rubble's confinement (per bond area)", "",
+           *(["The dictionary holds the measured points (`--relation points`, the plot's polylines); the straight-line "
+              "fits below show how far the relation bends.", ""] if points else []),
            "| rho = T_p/S_p | S_eff = a S_p + b: a | b (kPa) | largest residual | T_eff = a T_p + b: a | b (kPa) | largest residual | S_eff/T_eff at S_p 160 kPa |",
            "|---|---|---|---|---|---|---|---|"]
     for rho, r in sorted(relation.items()):
@@ -556,10 +638,9 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
             md.append(f"| {name} | {test} | {kpa(s_p, 0)} | | failed: {r['failed']} | |")
             continue
         rho = r["T_p"] / r["S_p"]
-        c = relation.get(round(rho, 4))
         pred = None
-        if c:
-            pred = c["shearSlope"] * s_p + c["shearIntercept"] if test == "shear" else c["tensileSlope"] * rho * s_p + c["tensileIntercept"]
+        if min(relation) <= rho <= max(relation):
+            pred = forward(rho * s_p, s_p)[1 if test == "shear" else 0]
         md.append(f"| {name} | {test} | {kpa(s_p, 0)} | {kpa(r['confinement_Pa'], 3)} | {kpa(r['effective_Pa'], 2)} | "
                   + (f"{100 * (r['effective_Pa'] / pred - 1):+.1f} %" if pred else "") + " |")
     md += ["", f"## Derived particle strengths (c_f = {cf:g}; Pa on the bond area, shown in kPa)", "",
@@ -574,7 +655,7 @@ def write_markdown(path, conf_rows, dist, pressure, probe_s, probe_t, relation, 
     iceCases.write_atomically(path, "\n".join(md) + "\n")
 
 
-def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf, sweep_strengths):
+def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf, sweep_strengths, points=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -587,11 +668,13 @@ def plot(path, sweep, relation, ratios, derived, sens, rho0, sets, cf, sweep_str
         r = relation[rho]
         done = [s for s in x if succeeded(sweep[("shear", rho, s)])]
         ax[0].plot(np.array(done) * 1e-3, [sweep[("shear", rho, s)]["effective_Pa"] * 1e-3 for s in done], "o", color=col)
-        ax[0].plot(x * 1e-3, (r["shearSlope"] * x + r["shearIntercept"]) * 1e-3, "-", color=col, label=f"rho {rho:g}")
+        shear_line = np.array(points[rho]["shear"]) if points else r["shearSlope"] * x + r["shearIntercept"]
+        ax[0].plot(x * 1e-3, shear_line * 1e-3, "-", color=col, label=f"rho {rho:g}")
         done = [s for s in x if succeeded(sweep[("tension", rho, s)])]
         ax[1].plot(rho * np.array(done) * 1e-3, [sweep[("tension", rho, s)]["effective_Pa"] * 1e-3 for s in done], "o",
                    color=col)
-        ax[1].plot(rho * x * 1e-3, (r["tensileSlope"] * rho * x + r["tensileIntercept"]) * 1e-3, "-", color=col)
+        tension_line = np.array(points[rho]["tension"]) if points else r["tensileSlope"] * rho * x + r["tensileIntercept"]
+        ax[1].plot(rho * x * 1e-3, tension_line * 1e-3, "-", color=col)
     for d in derived:
         marker = {"sets": "*", "iceRatio": "s"}.get(d["choice"], "x")
         ax[0].plot(d["S_p"] * 1e-3, d["check"][1] * 1e-3, marker, color="C3", ms=10 if marker == "*" else 6,

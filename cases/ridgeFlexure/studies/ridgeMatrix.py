@@ -10,9 +10,15 @@ again. Each run is then classified by postProcessing/failureAnalysis.py, and
 the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
 (.png) of every finished run in runs/<resolution>/ are written there.
 
+Beside the matrix, the consolidated layer of each thickness in it is loaded
+alone, in the same supports and at the same resolution (runs/<resolution>/
+layerAlone_CL<cm>: keel.settledRubble none, ridgeDEM floats the layer alone),
+so that each row carries its layer's own failure force and the keel's
+contribution (failure force minus the layer's; the whole force without a CL).
+
 --publish (./Allrun -publish) runs nothing: it writes the table and plot of
 runs/<resolution>/ into the committed results/ folder, and refuses unless all 16
-runs there are finished: a partial set is never published (nor merged into the
+runs and the layers alone there are finished: a partial set is never published (nor merged into the
 published table, which would mix result sets).
 
 Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5] [--publish]
@@ -67,7 +73,16 @@ def keel_case(run, resolution):
     return os.path.join(CASE, "runs", "smoke", "keels", name) if resolution == "smoke" else os.path.join(CASE, "keels", name)
 
 
+def layers_alone(runs):
+    """The layer-alone runs the given matrix runs are compared with: one per CL thickness above 0.
+    A layer alone has no keel and no freeze-bonds: its set is the first run's (it changes nothing)."""
+    thicknesses = sorted({r["cl_cm"] for r in runs if r["cl_cm"] > 0})
+    return [{"run": 0, "keel": "none", "set": runs[0]["set"], "cl_cm": cm, "alone": True} for cm in thicknesses]
+
+
 def run_dir(run, resolution):
+    if run.get("alone"):
+        return os.path.join(CASE, "runs", resolution, "layerAlone_CL%d" % run["cl_cm"])
     return os.path.join(CASE, "runs", resolution,
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
@@ -76,7 +91,7 @@ def made_from(run, resolution):
     """What a run folder is made from: the run's row, and the content of the case's inputs and of
     its keel. A folder made from anything else is stale: made again, never reused or skipped."""
     digest = hashlib.sha256(json.dumps([run, resolution], sort_keys=True).encode())
-    files = [iceCases.keel_file(keel_case(run, resolution))]
+    files = [] if run.get("alone") else [iceCases.keel_file(keel_case(run, resolution))]
     for sub in ("constant", "system"):
         for folder, _, names in sorted(os.walk(os.path.join(CASE, sub))):
             files += [os.path.join(folder, n) for n in sorted(names)]
@@ -105,8 +120,11 @@ def prepare(run, resolution, target=None):
     iceCases.copy_case(CASE, target)
     iceCases.write_atomically(stamp, fingerprint + "\n")
     props = os.path.join(target, "constant", "ridgeProperties")
-    keel = iceCases.keel_file(keel_case(run, resolution))
-    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(keel, target))
+    if run.get("alone"):
+        iceCases.set_entry(props, "keel.settledRubble", "none")
+    else:
+        keel = iceCases.keel_file(keel_case(run, resolution))
+        iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(keel, target))
     iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
     iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
     if resolution != "default":
@@ -124,13 +142,15 @@ def prepare(run, resolution, target=None):
 def execute(run, resolution):
     """Runs (or resumes) one run and its failure analysis; returns its wall time or None if it was done."""
     target = prepare(run, resolution)
-    if iceCases.finished(target) and os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
+    if analysed(run, resolution):
         return None
     start = time.time()
     if not iceCases.finished(target):
         resume = os.path.exists(os.path.join(target, "DEM", "checkpoint"))
         iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
                          log_name="log.ridgeDEM")
+    if run.get("alone"):
+        return time.time() - start
     subprocess.run([sys.executable, os.path.join(iceCases.TOP, "postProcessing", "failureAnalysis.py"), target],
                    check=True, stdout=open(os.path.join(target, "log.failureAnalysis"), "w"),
                    stderr=subprocess.STDOUT)
@@ -165,9 +185,39 @@ def result_row(run, resolution):
 
 
 def analysed(run, resolution):
+    """Finished, and (a ridge) classified by its failure analysis."""
     target = run_dir(run, resolution)
-    return iceCases.finished(target) and os.path.exists(
-        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json"))
+    return iceCases.finished(target) and (run.get("alone") or os.path.exists(
+        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")))
+
+
+def with_layer_alone(row, layer_forces):
+    """The row with its layer's failure force alone and the keel's contribution beside it
+    (blank where that layer alone has not run)."""
+    cm = row["CL_cm"]
+    alone = 0.0 if cm == 0 else layer_forces.get(cm)
+    out = {}
+    for key, value in row.items():
+        out[key] = value
+        if key == "failure_force_kN":
+            out["layer_alone_kN"] = "" if alone is None else alone
+            out["keel_contribution_kN"] = "" if alone is None else round(value - alone, 3)
+    return out
+
+
+def layer_forces(resolution):
+    """Failure force (kN) of every finished layer-alone run of a resolution, by CL thickness (cm)."""
+    forces = {}
+    for layer in layers_alone(matrix()):
+        target = run_dir(layer, resolution)
+        if iceCases.finished(target):
+            forces[int(layer["cl_cm"])] = round(iceCases.summary(target)["peak_force_N"] * 1e-3, 3)
+    return forces
+
+
+def table_rows(runs, resolution):
+    forces = layer_forces(resolution)
+    return [with_layer_alone(result_row(r, resolution), forces) for r in runs]
 
 
 def write_table(rows, resolution, folder):
@@ -198,7 +248,8 @@ def publication_record(runs, resolution):
         target = run_dir(run, resolution)
         s = iceCases.summary(target)
         finished = os.path.getmtime(os.path.join(target, "postProcessing", "summary.json"))
-        entries.append({"run": run["run"], "inputs_fingerprint": s.get("inputs_fingerprint"),
+        entries.append({"run": run["run"] if not run.get("alone") else os.path.basename(target),
+                        "inputs_fingerprint": s.get("inputs_fingerprint"),
                         "ranks": s["ranks"], "wall_s": round(s["wall_s"], 1),
                         "finished": time.strftime("%Y-%m-%d %H:%M", time.gmtime(finished))})
     return {"resolution": resolution, "revision": iceCases.git_revision(),
@@ -210,6 +261,7 @@ def readme_table(rows, record):
     """The README's table of a published matrix (generated by --publish, never typed)."""
     columns = [("run", "run"), ("keel_m", "keel [m]"), ("bond_set", "bond set"), ("CL_cm", "CL [cm]"),
                ("depth_m", "depth [m]"), ("failure_force_kN", "failure force [kN]"),
+               ("layer_alone_kN", "layer alone [kN]"), ("keel_contribution_kN", "keel's contribution [kN]"),
                ("buoyancy_share_at_peak_kN", "buoyancy share [kN]"),
                ("flexural_strength_kPa", "sigma_f [kPa]"), ("equivalent_thickness_m", "D_eq [m]"),
                ("failure_mode", "failure mode"), ("broken_ice", "broken ice bonds"),
@@ -240,6 +292,9 @@ def plot(rows, base):
         label = "keel %s m, %s" % (keel, bond_set)
         ax1.plot([r["CL_cm"] for r in rs], [r["flexural_strength_kPa"] for r in rs], style, label=label)
         ax2.plot([r["CL_cm"] for r in rs], [r["failure_force_kN"] for r in rs], style, label=label)
+    alone = sorted({(r["CL_cm"], r["layer_alone_kN"]) for r in rows if r.get("layer_alone_kN") != ""})
+    if alone:
+        ax2.plot([cm for cm, _ in alone], [f for _, f in alone], "k:^", label="layer alone, same supports")
     ax1.set_xlabel("consolidated layer thickness [cm]")
     ax1.set_ylabel("flexural strength 3FL/(2BD$^2$) [kPa]")
     ax2.set_xlabel("consolidated layer thickness [cm]")
@@ -268,15 +323,15 @@ def main():
     if args.publish:
         if args.resolution == "smoke" or args.runs:
             parser.error("argument --publish: publishes the whole matrix of --resolution default or quick")
-        missing = [r["run"] for r in runs if not analysed(r, args.resolution)]
+        missing = [os.path.basename(run_dir(r, args.resolution)) for r in runs + layers_alone(runs)
+                   if not analysed(r, args.resolution)]
         if missing:
-            sys.exit("ridgeMatrix: not published: run(s) %s not finished in %s (a partial matrix is never "
-                     "published; run them first)" % (",".join(map(str, missing)),
-                                                      os.path.join(CASE, "runs", args.resolution)))
-        rows = [result_row(r, args.resolution) for r in runs]
+            sys.exit("ridgeMatrix: not published: %s not finished in %s (a partial matrix is never "
+                     "published; run them first)" % (", ".join(missing), os.path.join(CASE, "runs", args.resolution)))
+        rows = table_rows(runs, args.resolution)
         base = write_table(rows, args.resolution, os.path.join(CASE, "results"))
         plot(rows, base)
-        record = publication_record(runs, args.resolution)
+        record = publication_record(runs + layers_alone(runs), args.resolution)
         iceCases.write_atomically(base + ".json", json.dumps(record, indent=1) + "\n")
         iceCases.write_readme_section(os.path.join(CASE, "README.md"), "ridgeMatrix_%s table" % args.resolution,
                                       readme_table(rows, record))
@@ -288,7 +343,8 @@ def main():
             parser.error("argument --runs: no run %s in ridgeMatrix.csv (runs %d-%d)"
                          % (",".join(map(str, unknown)), min(r["run"] for r in runs), max(r["run"] for r in runs)))
         runs = [r for r in runs if r["run"] in set(args.runs)]
-    for run in runs:
+    runs = runs + layers_alone(runs)
+    for run in (r for r in runs if not r.get("alone")):
         keel = iceCases.keel_file(keel_case(run, args.resolution))
         if not os.path.exists(keel):
             sys.exit("ridgeMatrix: %s is missing: build the keel first (./Allrun does)" % keel)
@@ -305,8 +361,8 @@ def main():
                 times.append(wall)
             left = len(runs) - done[0]
             eta = (sum(times) / len(times) * left / args.jobs) if times else 0.0
-            print("run %2d done (%s); %d of %d finished, %s elapsed, about %s left"
-                  % (run["run"], "%.0f s" % wall if wall is not None else "already done", done[0], len(runs),
+            print("%s done (%s); %d of %d finished, %s elapsed, about %s left"
+                  % (os.path.basename(run_dir(run, args.resolution)), "%.0f s" % wall if wall is not None else "already done", done[0], len(runs),
                      time.strftime("%H:%M:%S", time.gmtime(time.time() - started)),
                      time.strftime("%H:%M:%S", time.gmtime(eta))), flush=True)
 
@@ -315,7 +371,7 @@ def main():
             future.result()
 
     # The table of every finished run of the folder (runs of earlier invocations too).
-    rows = [result_row(r, args.resolution) for r in matrix() if analysed(r, args.resolution)]
+    rows = table_rows([r for r in matrix() if analysed(r, args.resolution)], args.resolution)
     base = write_table(rows, args.resolution, os.path.join(CASE, "runs", args.resolution))
     plot(rows, base)
     print("Results: %s.csv, %s.md, %s.png (%s in all)"
