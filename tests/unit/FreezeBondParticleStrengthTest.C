@@ -251,14 +251,19 @@ TEST(FreezeBondParticleStrength, CalibratedHoldsForItsCompressionModulusOnly)
 }
 
 
-TEST(FreezeBondParticleStrength, SharedDictionaryReadsAndMeetsItsShear)
+TEST(FreezeBondParticleStrength, CaseDictionariesReadAndMeetTheirShear)
 {
-    // cases/common/freezeBondProperties with its #include of freezeBondCalibration
-    const auto p = FreezeBondProperties::read(ICEDEM_SOURCE_DIR "/cases/common/freezeBondProperties");
-    ASSERT_EQ(p.particleStrength().name(), "calibrated");
-    const FreezeBondStrength s = p.strength(0.0, bondArea);
-    const BondStrengthPair back = p.particleStrength().effective({s.tensile, s.shear});
-    EXPECT_NEAR(back.shear, s.effectiveShear, 1e-9*s.effectiveShear);
-    EXPECT_GT(s.shear, 0.0);
-    EXPECT_NEAR(s.tensile/s.shear, 26.9/88.8, 1e-12);
+    // cases/common/freezeBondProperties with each case's calibration (the case's #include)
+    for (const char* name : {"ridgeFlexure", "keelBond", "rubblePunch", "rubbleBeam"})
+    {
+        const auto p = FreezeBondProperties::read
+        (
+            std::string(ICEDEM_SOURCE_DIR "/cases/") + name + "/constant/freezeBondProperties"
+        );
+        ASSERT_EQ(p.particleStrength().name(), "calibrated") << name;
+        const FreezeBondStrength s = p.strength(0.0, bondArea);
+        const BondStrengthPair back = p.particleStrength().effective({s.tensile, s.shear});
+        EXPECT_NEAR(back.shear, s.effectiveShear, 1e-9*s.effectiveShear) << name;
+        EXPECT_GT(s.shear, 0.0) << name;
+    }
 }
