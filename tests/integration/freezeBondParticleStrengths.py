@@ -34,7 +34,8 @@ def rubble_bonds(case):
     """The case's freezeBondProperties replaced by the rubble's (cases/common, 4h)."""
     with open(os.path.join(case, "constant", "freezeBondProperties"), "w") as f:
         f.write('FoamFile { version 2.0; format ascii; class dictionary; object freezeBondProperties; }\n'
-                '#include "../../common/freezeBondProperties"\n')
+                '#include "../../common/freezeBondProperties"\n'
+                'calibratedCoeffs { #include "../../common/freezeBondCalibration" }\n')
 
 
 def scalar(text):
