@@ -120,10 +120,10 @@ def rubble_confinement(summaries, bonds_csv):
     return rows, dist
 
 
-def cached(done, tensile, shear, pressure, made_from):
+def cached(work, done, tensile, shear, pressure, made_from):
     """Whether a finished run's summary is there and was made with these strengths and pressure,
-    and with these moduli and loading (made_from, recorded in the run folder's madeFrom)."""
-    stamp = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(done)))), "madeFrom")
+    and with these moduli and loading (made_from, recorded in work/madeFrom)."""
+    stamp = os.path.join(work, "madeFrom")
     if not os.path.exists(done) or not os.path.exists(stamp) or open(stamp).read() != made_from:
         return False
     s = json.load(open(done))
@@ -181,7 +181,7 @@ class Runner:
         rate = load_at(expected) / (time_to_failure * self.slow)
         cap = 3 * load_at(expected + 0.3 * 0.46 * pressure)
         made_from = self._made_from(loadRate=rate, maxLoad=cap)
-        if not cached(done, tensile, shear, pressure, made_from):
+        if not cached(work, done, tensile, shear, pressure, made_from):
             self._copy(SHEAR_CASE, work)
             props = os.path.join(work, "constant", "shearTestProperties")
             iceCases.set_entry(props, "loading.loadRate", f"{rate:.6g}")
@@ -212,7 +212,7 @@ class Runner:
         pull = 0.56e-9 * expected * 5.4e8 / modulus
         speed = pull / (time_to_peak * self.slow)
         made_from = self._made_from(pullSpeed=speed, maxPull=3 * pull)
-        if not cached(done, tensile, shear, pressure, made_from):
+        if not cached(work, done, tensile, shear, pressure, made_from):
             self._copy(TENSION_CASE, work)
             props = os.path.join(work, "constant", "tensionTestProperties")
             iceCases.set_entry(props, "loading.pullSpeed", f"{speed:.6g}")

@@ -19,6 +19,7 @@ Usage: studies/compressionCheck.py [--jobs N] [--publish]
 import argparse
 import concurrent.futures
 import csv
+import io
 import os
 import sys
 
@@ -96,11 +97,11 @@ def row(name, target, stopped):
 def write(rows):
     os.makedirs(OUT, exist_ok=True)
     base = os.path.join(OUT, "compressionCheck")
-    with open(base + ".csv.tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(base + ".csv.tmp", base + ".csv")
+    table = io.StringIO()
+    writer = csv.DictWriter(table, COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    iceCases.write_atomically(base + ".csv", table.getvalue())
     md = ["Quick ridge run 3 (0.5 m keel, 2 min set, 15 cm CL), particleStrengths direct, clamped ends, "
           "`studies/compressionCheck.py`. A run 'blew up' where its kinetic energy passed 100 J (a failing "
           "ridge stays under 10 J here).", "",
