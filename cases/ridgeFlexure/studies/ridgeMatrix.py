@@ -10,6 +10,12 @@ again. Each run is then classified by postProcessing/failureAnalysis.py, and
 the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
 (.png) of every finished run in runs/<resolution>/ are written there.
 
+A run the application stopped (e.g. a particle past maxParticleSpeed: a blow-up)
+after its load had fallen to 90 % of its peak or less has failed before it
+stopped: its row keeps the peak and the breaks up to the stop, and its failure
+mode says where and why it stopped. A run stopped earlier, or failed otherwise,
+is listed at the end (exit status 1) and left out of the table.
+
 Beside the matrix, the consolidated layer of each thickness in it is loaded
 alone, in the same supports and at the same resolution (runs/<resolution>/
 layerAlone_CL<cm>: keel.settledRubble none, ridgeDEM floats the layer alone),
@@ -18,7 +24,7 @@ contribution (failure force minus the layer's; the whole force without a CL).
 
 --publish (./Allrun -publish) runs nothing: it writes the table and plot of
 runs/<resolution>/ into the committed results/ folder, and refuses unless all 16
-runs and the layers alone there are finished: a partial set is never published (nor merged into the
+runs and the layers alone there are finished (or stopped after their failure, above): a partial set is never published (nor merged into the
 published table, which would mix result sets).
 
 Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5] [--publish]
@@ -30,6 +36,7 @@ import concurrent.futures
 import csv
 import hashlib
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -40,7 +47,9 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(CASE)), "postProcessing"))
+import h5py  # noqa: E402
 import iceCases  # noqa: E402
+import numpy as np  # noqa: E402
 
 
 # The quick resolution: coarser keel blocks and layer, a faster platen and a
@@ -145,10 +154,16 @@ def execute(run, resolution):
     if analysed(run, resolution):
         return None
     start = time.time()
-    if not iceCases.finished(target):
+    if not iceCases.finished(target) and not stopped_after_failure(target):
         resume = os.path.exists(os.path.join(target, "DEM", "checkpoint"))
-        iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
-                         log_name="log.ridgeDEM")
+        try:
+            iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
+                             log_name="log.ridgeDEM")
+        except RuntimeError as error:
+            if run.get("alone") or not stopped_after_failure(target):
+                raise
+            print("%s: %s; its curve up to the stop is kept (the load had fallen from its peak)"
+                  % (os.path.basename(target), iceCases.fatal_message(error)), flush=True)
     if run.get("alone"):
         return time.time() - start
     subprocess.run([sys.executable, os.path.join(iceCases.TOP, "postProcessing", "failureAnalysis.py"), target],
@@ -159,9 +174,16 @@ def execute(run, resolution):
 
 def result_row(run, resolution):
     target = run_dir(run, resolution)
-    s = iceCases.summary(target)
+    stop = None if iceCases.finished(target) else stopped_after_failure(target)
+    s = stopped_row(target) if stop else iceCases.summary(target)
     fa = json.load(open(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")))
-    failure = fa.get("ridge_failure", {"mode": "n/a", "text": []})
+    failure = dict(fa.get("ridge_failure", {"mode": "n/a", "text": []}))
+    if stop:
+        # The peak stands (the load had fallen from it); what came after the stop is missing.
+        # (no commas: the CSV quotes only the evidence)
+        failure["mode"] = ("%s; stopped at %.1f mm (after the peak at %.1f mm; breaks recorded to %.1f mm): %s" % (
+            failure["mode"], s["stopped_at_mm"], s["travel_at_peak_mm"], s["breaks_recorded_to_mm"],
+            stop.split(": the run")[0])).replace(",", ";")
     force = s["peak_force_N"]
     depth = s["depth_m"]
     evidence = failure.get("text", [])
@@ -184,11 +206,55 @@ def result_row(run, resolution):
     }
 
 
+def stopped_after_failure(target, drop=0.9):
+    """The reason a ridge run stopped early (e.g. a particle faster than maxParticleSpeed) when it
+    stopped after its failure: its force curve had fallen to `drop` of its peak or below, so the
+    peak and the breaks before the stop stand. None for a finished run, or one stopped earlier."""
+    path = os.path.join(target, "postProcessing", "summary.json")
+    curve = os.path.join(target, "postProcessing", "platenForce.csv")
+    if not (os.path.exists(path) and os.path.exists(curve)):
+        return None
+    s = json.load(open(path))
+    if s.get("complete", True) or not s.get("reason"):
+        return None
+    c = iceCases.curve(target)
+    if not c["force"] or c["force"][-1] > drop * max(c["force"]):
+        return None
+    return s["reason"]
+
+
 def analysed(run, resolution):
-    """Finished, and (a ridge) classified by its failure analysis."""
+    """Finished (or a ridge stopped after its failure, stopped_after_failure), and (a ridge)
+    classified by its failure analysis."""
     target = run_dir(run, resolution)
-    return iceCases.finished(target) and (run.get("alone") or os.path.exists(
-        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")))
+    if run.get("alone"):
+        return iceCases.finished(target)
+    return (iceCases.finished(target) or stopped_after_failure(target)) and os.path.exists(
+        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json"))
+
+
+def stopped_row(target):
+    """A stopped run's figures from its curve up to the stop and its geometry (the application
+    wrote no summary figures): the summary's keys that result_row reads."""
+    c = iceCases.curve(target)
+    g = json.load(open(os.path.join(target, "postProcessing", "geometry.json")))
+    peak = max(range(len(c["force"])), key=lambda k: c["force"][k])
+    force, depth = c["force"][peak], g["depth"]
+    sigma_f1 = float(iceCases.get_entry(os.path.join(target, "constant", "ridgeProperties"),
+                                        "test.referenceFlexuralStrength"))
+    # The breakage record on disk is the last checkpoint's, short of the stop.
+    with h5py.File(os.path.join(target, "postProcessing", "breakage.h5"), "r") as f:
+        family, mode, when = (np.array(f["breakage"][k]) for k in ("family", "mode", "time"))
+    freeze = family == 1
+    loading = next(line for line in open(os.path.join(target, "log.ridgeDEM")) if line.startswith("Loading: "))
+    return {"peak_force_N": force, "depth_m": depth, "buoyancy_share_at_peak_N": c["buoyancyShare"][peak],
+            "flexural_strength_Pa": 3 * force * g["length"] / (2 * g["width"] * depth ** 2),
+            "equivalent_thickness_m": math.sqrt(3 * force * g["length"] / (2 * sigma_f1 * g["width"])),
+            "freeze_bonds_broken_in_tension_share": float(np.mean(mode[freeze] == 1)) if freeze.any() else 0.0,
+            "broken_by_family": {"ice": int(np.sum(family == 0)), "freeze": int(np.sum(freeze))},
+            "layer_keel_bonds_broken": "", "particles": int(loading.split()[1]), "wall_s": float("nan"),
+            "stopped_at_mm": c["travel"][-1] * 1e3, "travel_at_peak_mm": c["travel"][peak] * 1e3,
+            "breaks_recorded_to_mm": float(np.interp(when.max(), c["time"], c["travel"])) * 1e3 if len(when) else 0.0}
 
 
 def with_layer_alone(row, layer_forces):
@@ -246,12 +312,18 @@ def publication_record(runs, resolution):
     entries = []
     for run in runs:
         target = run_dir(run, resolution)
-        s = iceCases.summary(target)
-        finished = os.path.getmtime(os.path.join(target, "postProcessing", "summary.json"))
-        entries.append({"run": run["run"] if not run.get("alone") else os.path.basename(target),
-                        "inputs_fingerprint": s.get("inputs_fingerprint"),
-                        "ranks": s["ranks"], "wall_s": round(s["wall_s"], 1),
-                        "finished": time.strftime("%Y-%m-%d %H:%M", time.gmtime(finished))})
+        stop = None if iceCases.finished(target) or run.get("alone") else stopped_after_failure(target)
+        summary = os.path.join(target, "postProcessing", "summary.json")
+        s = json.load(open(summary)) if stop else iceCases.summary(target)
+        finished = os.path.getmtime(summary)
+        entry = {"run": run["run"] if not run.get("alone") else os.path.basename(target),
+                 "inputs_fingerprint": s.get("inputs_fingerprint"),   # none in a stopped run's summary
+                 "made_from": open(os.path.join(target, "madeFrom")).read().strip(),
+                 "ranks": s.get("ranks", 1), "wall_s": round(s.get("wall_s", 0.0), 1),
+                 "finished": time.strftime("%Y-%m-%d %H:%M", time.gmtime(finished))}
+        if stop:
+            entry["stopped"] = stop
+        entries.append(entry)
     return {"resolution": resolution, "revision": iceCases.git_revision(),
             "published": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
             "machine": "%d cores" % (os.cpu_count() or 1), "runs": entries}
@@ -353,8 +425,16 @@ def main():
     started = time.time()
     done, times = [0], []
 
+    failed = []
+
     def one(run):
-        wall = execute(run, args.resolution)
+        try:
+            wall = execute(run, args.resolution)
+        except (RuntimeError, subprocess.CalledProcessError) as error:
+            with lock:
+                failed.append("%s: %s" % (os.path.basename(run_dir(run, args.resolution)), iceCases.fatal_message(error)))
+                print("%s failed: %s" % (os.path.basename(run_dir(run, args.resolution)), failed[-1]), flush=True)
+            return
         with lock:
             done[0] += 1
             if wall is not None:
@@ -372,10 +452,13 @@ def main():
 
     # The table of every finished run of the folder (runs of earlier invocations too).
     rows = table_rows([r for r in matrix() if analysed(r, args.resolution)], args.resolution)
-    base = write_table(rows, args.resolution, os.path.join(CASE, "runs", args.resolution))
-    plot(rows, base)
-    print("Results: %s.csv, %s.md, %s.png (%s in all)"
-          % (base, base, base, time.strftime("%H:%M:%S", time.gmtime(time.time() - started))))
+    if rows:
+        base = write_table(rows, args.resolution, os.path.join(CASE, "runs", args.resolution))
+        plot(rows, base)
+        print("Results: %s.csv, %s.md, %s.png (%s in all)"
+              % (base, base, base, time.strftime("%H:%M:%S", time.gmtime(time.time() - started))))
+    if failed:
+        sys.exit("ridgeMatrix: %d run(s) failed (not in the table):\n  %s" % (len(failed), "\n  ".join(failed)))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""studies/ridgeMatrix.py keeps a ridge run that the application stopped after its failure (its
+load had fallen to 90 % of its peak or less, e.g. a blow-up caught by maxParticleSpeed) and
+refuses one stopped before it: on synthetic run folders (a summary saying "complete": false with
+the application's reason, and a force curve), no application run.
+
+usage: ridgeMatrixStopped.py --source TOP"""
+import argparse
+import json
+import os
+import sys
+import tempfile
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def run_folder(root, name, forces, summary):
+    folder = os.path.join(root, name, "postProcessing")
+    os.makedirs(folder)
+    with open(os.path.join(folder, "summary.json"), "w") as f:
+        json.dump(summary, f)
+    with open(os.path.join(folder, "platenForce.csv"), "w") as f:
+        f.write("time,travel,force\n")
+        f.writelines(f"{0.1 * k},{0.001 * k},{force}\n" for k, force in enumerate(forces))
+    return os.path.dirname(folder)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--source", required=True)
+    top = os.path.abspath(ap.parse_args().source)
+    sys.path.insert(0, os.path.join(top, "cases", "ridgeFlexure", "studies"))
+    sys.argv = sys.argv[:1]
+    import ridgeMatrix
+
+    reason = "stopped by an error: particle 3957 moves at 13.1 m/s, faster than maxParticleSpeed 10 m/s: the run has blown up"
+    stopped = {"complete": False, "reason": reason, "application": "ridgeDEM"}
+    with tempfile.TemporaryDirectory() as root:
+        after = run_folder(root, "after", [0, 5e3, 10.7e3, 9.5e3, 8.7e3], stopped)
+        before = run_folder(root, "before", [0, 5e3, 10.7e3, 10.1e3], stopped)
+        finished = run_folder(root, "finished", [0, 5e3, 10.7e3, 4e3], {"complete": True, "peak_force_N": 10.7e3})
+        killed = run_folder(root, "killed", [0, 5e3, 10.7e3, 2e3], {"complete": False})
+        check(ridgeMatrix.stopped_after_failure(after) == reason,
+              "stopped at 81 % of its peak: kept, with the application's reason")
+        check(ridgeMatrix.stopped_after_failure(before) is None, "stopped at 94 % of its peak: not a result")
+        check(ridgeMatrix.stopped_after_failure(finished) is None, "a finished run is no stopped run")
+        check(ridgeMatrix.stopped_after_failure(killed) is None, "a run without a reason (killed) is no stopped run")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
