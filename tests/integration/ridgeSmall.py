@@ -34,6 +34,7 @@ import json
 import math
 import os
 import subprocess
+import shutil
 import sys
 
 import h5py
@@ -413,6 +414,20 @@ def direct_shear(work, bin_dir):
           f"{bonds[at_peak]:.0f} N (the layer ploughs into the held keel)")
     broken = s["layer_keel_bonds_broken"]
     check(broken == len(area), f"all {len(area)} layer-keel bonds broke ({broken})")
+
+    # On two ranks the bonds' share is summed from each rank's own layer particles.
+    two = ridge_case("keelBond", os.path.join(work, "directShear_2ranks"), work,
+                     controls=(("maxTravel", SHEAR_TRAVEL), ("sampleInterval", 1e-5)),
+                     entries=(("assembly.relaxTime", 0.1), ("test.type", "directShear"), ("test.speed", 0.1)))
+    os.makedirs(os.path.join(two, "DEM"), exist_ok=True)
+    shutil.copy(os.path.join(case, "DEM", "ridge.h5"), os.path.join(two, "DEM", "ridge.h5"))
+    iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), two, 2, ["-stage", "load"], "log.ridgeDEM")
+    other = np.genfromtxt(os.path.join(two, "postProcessing", "platenForce.csv"), delimiter=",", names=True)
+    rows = min(len(other), len(bonds))
+    apart = np.max(np.abs(other["interfaceBondForce"][:rows] - bonds[:rows]))
+    check(len(other) == len(bonds) and apart < 1e-9 * reference.max(),
+          f"2 ranks give the bonds' share of 1 rank: {len(other)} samples against {len(bonds)}, at most "
+          f"{apart:.2e} N apart (round-off: within 1e-9 of the peak)")
 
 
 def bad_input(work, bin_dir):
