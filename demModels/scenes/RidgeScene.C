@@ -313,6 +313,15 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
         lmp_->command("run " + std::to_string(n));
         steps += n;
+        const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp_->engine().atom->nlocal));
+        if (present != static_cast<long>(particles.size()))
+        {
+            throw RunError(std::to_string(particles.size() - present) + " particle(s) left the simulation box while"
+                " the assembly stiffened the contacts (stage " + std::to_string(k) + " of " + std::to_string(stages)
+                + ", E = " + formatNumber(modulus) + " Pa, step " + std::to_string(lmp_->step()) + "): the keel's"
+                " soft-contact overlaps released more energy than the plates hold (a keel compacted under a high"
+                " hold pressure?)");
+        }
         if (plates_)
         {
             // The lid holds the compaction's pressure, not its position: held in
