@@ -257,6 +257,11 @@ void PlatenLoading::run
     }
     catch (const std::exception& e)
     {
+        if (context_.rank() == 0)
+        {
+            // The breaks up to the last sample: what a blown-up run leaves to find its cause.
+            breakage_.writeHdf5(context_.path("postProcessing/breakage.h5"));
+        }
         markIncomplete(std::string("stopped by an error: ") + e.what());
         throw;
     }
