@@ -97,15 +97,20 @@ keel_file() {
     fi
 }
 
-# inputs_fingerprint PATH... -- WORD...: a digest of the files under each PATH (names
-# and contents) and of the WORDs (a run's own settings). A run folder records the
-# fingerprint of what it was made from (RUN/madeFrom), so that a finished run, or a
-# checkpoint, is never reused once the case, ../common or the keel changed.
+# inputs_fingerprint PATH... -- WORD...: a digest of the files under each PATH and of the
+# files their dictionaries #include, recursively (names and contents;
+# postProcessing/inputFiles.py), and of the WORDs (a run's own settings). A run folder
+# records the fingerprint of what it was made from (RUN/madeFrom), so that a finished
+# run, or a checkpoint, is never reused once the case, what it includes or the keel
+# changed; a calibration in ../common that the case does not include leaves it alone.
 inputs_fingerprint() {
     local paths=()
     while [ $# -gt 0 ] && [ "$1" != -- ]; do paths+=("$1"); shift; done
     shift
-    { find "${paths[@]}" -type f -print0 | sort -z | xargs -0 sha256sum; echo "$*"; } | sha256sum | cut -c1-16
+    local lister
+    lister="$(dirname "${BASH_SOURCE[0]}")/../postProcessing/inputFiles.py"
+    { /usr/bin/python3 "$lister" "${paths[@]}" | tr '\n' '\0' | xargs -0 sha256sum; echo "$*"; } \
+        | sha256sum | cut -c1-16
 }
 
 # reuse_run RUN FINGERPRINT RESUMING: what to do with an existing run folder RUN for

@@ -70,6 +70,28 @@ def included_files(path):
     return [name for name in names if os.path.isfile(name)]
 
 
+def input_files(paths):
+    """The files under `paths` (files or folders) and, recursively, the files their
+    dictionaries #include: what a run made from those paths depends on, and nothing else
+    (cases/common holds calibrations of other cases too)."""
+    found, pending = set(), []
+    for path in paths:
+        if os.path.isdir(path):
+            pending += [os.path.join(folder, n) for folder, _, names in os.walk(path) for n in names]
+        elif os.path.isfile(path):
+            pending.append(path)
+    while pending:
+        path = os.path.normpath(pending.pop())
+        if path in found or not os.path.isfile(path):
+            continue
+        found.add(path)
+        with open(path, "rb") as f:
+            binary = b"\0" in f.read(4096)   # an HDF5 keel, not a dictionary
+        if not binary:
+            pending += included_files(path)
+    return sorted(found)
+
+
 def get_entry(path, dotted):
     """The value text of `a.b.key value;` in an OpenFOAM dictionary file, or, when the
     file does not write it, in the files it #includes (the last include first)."""

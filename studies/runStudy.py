@@ -16,7 +16,7 @@ usage: runStudy.py STUDY [-jobs N] [-quick] [-resume] [-retry-failed] [-out FOLD
   -bin FOLDER    where the applications are (default: build/demModels of this checkout)
 
 A point is skipped when its folder holds a finished run made from the same inputs (`madeFrom`:
-knob values, command, the case's input files and cases/common); a changed input reruns it. The
+knob values, command, the case's input files and what they include of cases/common); a changed input reruns it. The
 table and the PNG are rewritten (atomically) after every point. Exit status: 0 when every point
 finished, 3 when some failed (recorded in the table with the application's message), 1 on an
 error of the study dictionary or another runner on the same folder, 2 on a bad command line,
@@ -72,20 +72,20 @@ _GENERATED = re.compile(r".*\.h5$|.*\.data$|.*\.restart\..*|^checkpoint.*|^varia
 
 def input_files(study):
     """{name: sha256} of the case's inputs (constant/, system/, DEM/ as copy_case copies them) and of
-    cases/common."""
+    the files of cases/common that its dictionaries #include (not the calibrations of other cases)."""
     files = {}
-    roots = [(study.case, sub) for sub in ("constant", "system", "DEM")]
-    roots.append((os.path.join(iceCases.TOP, "cases"), "common"))
-    for base, sub in roots:
-        for folder, dirs, names in os.walk(os.path.join(base, sub)):
-            rel = os.path.relpath(folder, base)
+    for sub in ("constant", "system", "DEM"):
+        for folder, dirs, names in os.walk(os.path.join(study.case, sub)):
+            rel = os.path.relpath(folder, study.case)
             if sub == "DEM":
                 dirs[:] = [d for d in dirs if not _GENERATED.match(d)]
                 names = [n for n in names if not _GENERATED.match(n)]
             dirs.sort()
             for name in sorted(names):
-                files[os.path.join("common" if sub == "common" else "case", rel, name)] = \
-                    _hash_file(os.path.join(folder, name))
+                files[os.path.join("case", rel, name)] = _hash_file(os.path.join(folder, name))
+    for path in iceCases.input_files([os.path.join(study.case, "constant"), os.path.join(study.case, "system")]):
+        if os.path.relpath(path, study.case).startswith(os.pardir):
+            files[os.path.relpath(path, os.path.dirname(study.case))] = _hash_file(path)
     return files
 
 

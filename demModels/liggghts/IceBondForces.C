@@ -788,6 +788,30 @@ void IceBondForces::breakIfOverLimit(std::size_t k, const BondKernelResult& resu
 }
 
 
+Vec3 IceBondForces::localForceAcross(long firstTag) const
+{
+    // The list, its load slots and atomOf_ stay as the last step left them
+    // until the next step rebuilds them, even after the table took over.
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t k = 0; k < list_.size(); ++k)
+    {
+        const ListedBond& bond = list_[k];
+        const bool aAbove = bond.state.tagA >= firstTag;
+        if (!intact_[k] || aAbove == (bond.state.tagB >= firstTag))
+        {
+            continue;
+        }
+        if (atomOf_[aAbove ? bond.a : bond.b] >= listedLocal_)
+        {
+            continue;   // a ghost: its owner counts it
+        }
+        const BondEndLoad& load = slots_[aAbove ? batches_.loadOfA(k) : batches_.loadOfB(k)];
+        sum += Vec3(load.force[0], load.force[1], load.force[2]);
+    }
+    return sum;
+}
+
+
 void IceBondForces::sumLoads(int entry)
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;

@@ -1,6 +1,7 @@
 #include "ParticleGather.H"
 
 #include "Checkpoint.H"
+#include "InputError.H"
 #include "LiggghtsInstance.H"
 
 #include "atom.h"
@@ -128,11 +129,26 @@ std::vector<Vec3> allPositionsByTag(const LiggghtsInstance& lmp)
         local.data(), count, MPI_DOUBLE,
         all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm
     );
-    std::vector<Vec3> positions(all.size()/4, Vec3::Constant(std::nan("")));
+    // Tags run from 1 to the number of particles made: a larger tag than
+    // particles present means some left the box (LIGGGHTS drops them).
+    long maxTag = 0;
+    for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    {
+        maxTag = std::max(maxTag, static_cast<long>(all[k]));
+    }
+    const long present = static_cast<long>(all.size()/4);
+    if (maxTag > present || static_cast<long>(atom.natoms) > present)
+    {
+        throw RunError(std::to_string(std::max(maxTag, static_cast<long>(atom.natoms)) - present)
+            + " particle(s) left the simulation box by step " + std::to_string(lmp.step())
+            + " (" + std::to_string(present) + " of the tags 1-" + std::to_string(maxTag)
+            + " remain): the run has blown up");
+    }
+    std::vector<Vec3> positions(present, Vec3::Constant(std::nan("")));
     for (std::size_t k = 0; k + 3 < all.size(); k += 4)
     {
         const long tag = static_cast<long>(all[k]);
-        positions.at(tag - 1) = Vec3(all[k + 1], all[k + 2], all[k + 3]);
+        positions[tag - 1] = Vec3(all[k + 1], all[k + 2], all[k + 3]);
     }
     return positions;
 }

@@ -1,11 +1,15 @@
 #include "LayerDisplacementTest.H"
 
+#include "CsvWriter.H"
+#include "IceBondForces.H"
 #include "LiggghtsInstance.H"
+#include "PlatenLoading.H"
 #include "ParticleGather.H"
 
 #include "atom.h"
 #include "lammps.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace iceDEM
@@ -41,6 +45,17 @@ double LayerDisplacementTest::force(const LiggghtsInstance& lmp, MPI_Comm comm, 
 }
 
 
+std::vector<double> LayerDisplacementTest::curveValues
+(
+    const IceBondForces& bonds, MPI_Comm comm, long layerFirstTag
+) const
+{
+    // The actuator balances the bonds' pull on the layer: minus it.
+    const double local = -bonds.localForceAcross(layerFirstTag)[static_cast<int>(axis_)];
+    return {sumOverRanks(comm, local)};
+}
+
+
 void LayerDisplacementTest::startMotion(LiggghtsInstance& lmp, const std::string& speed, const std::string& travel) const
 {
     lmp.command("variable layerV equal " + speed);
@@ -52,11 +67,31 @@ void LayerDisplacementTest::startMotion(LiggghtsInstance& lmp, const std::string
 }
 
 
-void LayerDisplacementTest::addFigures(Json& j, const RidgeGeometry& g, double peak, double startForce) const
+void LayerDisplacementTest::addFigures
+(
+    Json& j, const RidgeGeometry& g, const CsvWriter& curve, double peak, double startForce
+) const
 {
     const double area = g.length * g.width;
     j["interface_area_m2"] = area;
     j["interface_strength_Pa"] = (peak - startForce) / area;
+
+    const std::vector<std::string>& columns = curve.columns();
+    const std::size_t column = std::find(columns.begin(), columns.end(), "interfaceBondForce") - columns.begin();
+    if (curve.nRows() == 0 || column == columns.size())
+    {
+        return;
+    }
+    std::size_t atPeak = 0;
+    for (std::size_t k = 1; k < curve.nRows(); ++k)
+    {
+        if (curve.row(k)[column] > curve.row(atPeak)[column]) atPeak = k;
+    }
+    const double bondPeak = curve.row(atPeak)[column];
+    j["interface_bond_peak_N"] = bondPeak;
+    j["interface_bond_force_at_start_N"] = curve.row(0)[column];
+    j["travel_at_interface_bond_peak_m"] = curve.row(atPeak)[PlatenLoading::travelColumn];
+    j["interface_bond_strength_Pa"] = (bondPeak - curve.row(0)[column]) / area;
 }
 
 } // namespace iceDEM

@@ -68,7 +68,7 @@ void PlatenFlexureTest::startMotion(LiggghtsInstance& lmp, const std::string& sp
 }
 
 
-void PlatenFlexureTest::addFigures(Json& j, const RidgeGeometry& g, double peak, double) const
+void PlatenFlexureTest::addFigures(Json& j, const RidgeGeometry& g, const CsvWriter&, double peak, double) const
 {
     const double L = g.length, B = g.width, D = g.depth();
     j["flexural_strength_Pa"] = 3.0 * peak * L / (2.0 * B * D * D);

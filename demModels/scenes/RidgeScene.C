@@ -313,6 +313,15 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
         lmp_->command("run " + std::to_string(n));
         steps += n;
+        const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp_->engine().atom->nlocal));
+        if (present != static_cast<long>(particles.size()))
+        {
+            throw RunError(std::to_string(particles.size() - present) + " particle(s) left the simulation box while"
+                " the assembly stiffened the contacts (stage " + std::to_string(k) + " of " + std::to_string(stages)
+                + ", E = " + formatNumber(modulus) + " Pa, step " + std::to_string(lmp_->step()) + "): the keel's"
+                " soft-contact overlaps released more energy than the plates hold (a keel compacted under a high"
+                " hold pressure?)");
+        }
         if (plates_)
         {
             // The lid holds the compaction's pressure, not its position: held in
@@ -686,7 +695,7 @@ double RidgeScene::testForce() const
 }
 
 
-std::vector<double> RidgeScene::waterColumns()
+std::vector<double> RidgeScene::extraColumns()
 {
     // The buoyancy and submerged volume come from the scene's own water
     // fix, or, where the water is external, from the particles' caps below
@@ -727,6 +736,8 @@ std::vector<double> RidgeScene::waterColumns()
         columns.insert(columns.end(), own.begin(), own.end());
     }
     columns.push_back(settings_.endSupport->reaction(context_.comm()));
+    const std::vector<double> own = test_->curveValues(*bonds_, context_.comm(), layerFirstTag_);
+    columns.insert(columns.end(), own.begin(), own.end());
     return columns;
 }
 
@@ -889,7 +900,7 @@ void RidgeScene::load()
             }
         }
     }
-    std::vector<std::string> waterColumnNames{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"};
+    std::vector<std::string> extraColumnNames{"buoyancy", "submergedVolume", "buoyancyShare", "platenBuoyancy"};
     if (externalWater_)
     {
         if (settings_.resume)
@@ -897,13 +908,17 @@ void RidgeScene::load()
             throw InputError("command line", "-resume", "a checkpoint holds the DEM only, not the "
                 + externalWater_->name + " water: a run at that level starts again");
         }
-        waterColumnNames.insert(waterColumnNames.end(), externalWater_->columns.begin(), externalWater_->columns.end());
+        extraColumnNames.insert(extraColumnNames.end(), externalWater_->columns.begin(), externalWater_->columns.end());
     }
-    waterColumnNames.push_back("supportReaction");  // the end support's, along z, averaged since the last sample
+    extraColumnNames.push_back("supportReaction");  // the end support's, along z, averaged since the last sample
+    for (const std::string& name : test_->curveColumns())
+    {
+        extraColumnNames.push_back(name);
+    }
     loading_ = std::make_unique<PlatenLoading>
     (
         context_, settings_.loading, dt_,
-        particleCount_, fixedType, waterColumnNames
+        particleCount_, fixedType, extraColumnNames
     );
     loading_->setInputs(loadingInputs(ridgeInputs));
     loading_->setTimeStepChangedAtStart(settleDt != dt_);
@@ -1011,7 +1026,7 @@ void RidgeScene::load()
 
     PlatenLoading::Hooks hooks;
     hooks.force = [this] { return testForce(); };
-    hooks.extras = [this] { return waterColumns(); };
+    hooks.extras = [this] { return extraColumns(); };
     hooks.stopEjecta = [this] { return stopParticlesAtBoxEdge(); };
     hooks.failure = [this]
     {
@@ -1120,7 +1135,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["force_at_start_N"] = startForce;
     j["buoyancy_share_at_peak_N"] = shareAtPeak;
     j["peak_force_without_buoyancy_N"] = peak - shareAtPeak;
-    test_->addFigures(j, g, peak, startForce);
+    test_->addFigures(j, g, curve, peak, startForce);
     j["broken_bonds"] = long(breaks.size());
     j["broken_by_mode"] = byMode;
     j["broken_by_family"] = byFamily;

@@ -34,6 +34,7 @@ import json
 import math
 import os
 import subprocess
+import shutil
 import sys
 
 import h5py
@@ -107,6 +108,7 @@ def submerged_volume(z, r, level):
 # Free ends: a short keel's end blocks would reach under the platen. The buoyancy share does
 # not depend on the speed: 0.0125 m/s, not the case's 5 mm/s.
 PUNCH_ENTRIES = (("test.settleTime", 0.05), ("ends.fixedLength", 0), ("test.speed", 0.0125))
+SHEAR_TRAVEL = 0.02   # m: the small keel's interface has failed by 15.5 mm
 
 
 def punch(work, bin_dir):
@@ -224,8 +226,10 @@ def compare(work):
           f"{strong['peak_force_N'] - strong['force_at_start_N']:.1f} N above the start)")
 
 
-def interface_bonds(case, ice):
-    """Layer-keel freeze-bonds of DEM/ridge.h5: area, strengths, unit normal (keel to layer)."""
+def interface_bonds(case, ice, states=False):
+    """Layer-keel freeze-bonds of DEM/ridge.h5: area, strengths, unit normal (keel to layer),
+    beam length r_a + r_b; with states, also the separation (keel to layer), rest length and
+    shear displacement (of the layer's end against the keel's) the assembly left them at."""
     with h5py.File(os.path.join(case, "DEM", "ridge.h5"), "r") as f:
         p, b = f["particles"], f["bonds"]
         x = np.stack([np.array(p[k]) for k in ("x", "y", "z")], axis=1)
@@ -233,8 +237,11 @@ def interface_bonds(case, ice):
         a, c = np.array(b["tagA"]).astype(int) - 1, np.array(b["tagB"]).astype(int) - 1
         family = np.array(b["family"]).astype(int)
         tensile, shear = np.array(b["tensileStrength"]), np.array(b["shearStrength"])
+        rest = np.array(b["restLength"])
+        slip = np.stack([np.array(b[k]) for k in ("shearX", "shearY", "shearZ")], axis=1)
     layer = block == block.max()
     across = (family == 1) & (layer[a] != layer[c])
+    layer_is_a = layer[a[across]]
     a, c = a[across], c[across]
     keel_end = np.where(layer[a], c, a)
     layer_end = np.where(layer[a], a, c)
@@ -242,16 +249,22 @@ def interface_bonds(case, ice):
     normal = d / np.linalg.norm(d, axis=1)[:, None]
     area = math.pi * (ice["radiusMultiplier"] * np.minimum(radius[a], radius[c])) ** 2
     length = radius[a] + radius[c]
-    return area, tensile[across], shear[across], normal, length
+    if not states:
+        return area, tensile[across], shear[across], normal, length
+    # A bond's shear displacement is its b end's against its a end's.
+    layer_slip = np.where(layer_is_a[:, None], -slip[across], slip[across])
+    return area, tensile[across], shear[across], normal, length, d, rest[across], layer_slip
 
 
-def elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, direction):
+def elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, direction, E_compression=None):
     """Largest force of rigid bodies moved apart along `direction`: each bond a normal spring
-    E A / L and a shear spring G A / L, loaded by the movement's normal and tangential parts,
-    breaking where its normal force reaches sigma_t A or its shear force tau A."""
+    E A / L (E_compression A / L where the movement shortens it) and a shear spring G A / L,
+    loaded by the movement's normal and tangential parts, breaking where its normal force
+    reaches sigma_t A or its shear force tau A."""
     cos = normal @ direction
     sin = np.sqrt(np.maximum(0.0, 1.0 - cos * cos))
-    kn, kt = E * area / length, E / (2 * (1 + nu)) * area / length
+    E_normal = np.where(cos < 0, E if E_compression is None else E_compression, E)
+    kn, kt = E_normal * area / length, E / (2 * (1 + nu)) * area / length
     with np.errstate(divide="ignore"):
         limit_n = np.where(cos > 0, tensile * area / (kn * np.maximum(cos, 1e-300)), np.inf)
         limit_t = np.where(sin > 0, shear * area / (kt * np.maximum(sin, 1e-300)), np.inf)
@@ -264,6 +277,58 @@ def elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, direction)
     return float(forces.max()), float(breaks[order][int(np.argmax(forces))])
 
 
+def rigid_slide_bond_force(area, tensile, shear, length, separation, rest, slip, E, nu, E_compression,
+                           direction, travel):
+    """Force along `direction` that the bonds hold a rigid body with, moved by `travel` (rising
+    steps, m) along it from a held one, on the bond law of physics.md section 3 at any rotation
+    of the bonds, from the state the assembly left them in (separation from the held end,
+    rest length, shear displacement): each bond's normal spring (E A / L, E_compression A / L
+    shortened) acts along its present direction; its shear spring G A / L on the tangential
+    movement accumulated step by step and turned into the present tangent plane; it breaks
+    (separate criterion) where the normal force reaches sigma_t A or the shear force tau A.
+    Needed for slides of millimetres over 5 cm bonds, where the linear elastic_brittle_peak
+    turns wrong. Returns the force and the number of bonds broken at each travel."""
+    kn_t = E * area / length
+    kn_c = E_compression * area / length
+    kt = E / (2 * (1 + nu)) * area / length
+    intact = np.ones(len(area), dtype=bool)
+    slip = slip.copy()
+    forces, broken, before = [], [], 0.0
+    for s in travel:
+        moved = separation + s * direction
+        distance = np.linalg.norm(moved, axis=1)
+        n = moved / distance[:, None]
+        step = (s - before) * direction
+        before = s
+        kept = np.linalg.norm(slip, axis=1)
+        slip -= np.sum(slip * n, axis=1)[:, None] * n
+        projected = np.linalg.norm(slip, axis=1)
+        slip *= np.where(projected > 1e-300, kept / np.maximum(projected, 1e-300), 0.0)[:, None]
+        slip += step - (n @ step)[:, None] * n
+        stretch = distance - rest
+        normal_force = np.where(stretch > 0, kn_t, kn_c) * stretch
+        shear_force = -kt[:, None] * slip
+        intact &= (normal_force < tensile * area) & (np.linalg.norm(shear_force, axis=1) < shear * area)
+        on_body = -normal_force[:, None] * n + shear_force
+        forces.append(-np.sum((on_body @ direction)[intact]))
+        broken.append(np.count_nonzero(~intact))
+    return np.array(forces), np.array(broken)
+
+
+def interface_springs(case, states=False):
+    """The layer-keel freeze-bonds of a case's DEM/ridge.h5 (interface_bonds) with the freeze
+    family's E, nu and modulus in compression, checked against the count its log reports."""
+    log = os.path.join(case, "log.ridgeDEM")
+    reported = int(next(line for line in open(log) if "between layer and keel" in line)
+                   .split(" between layer and keel")[0].rsplit("(", 1)[1])
+    props = os.path.join(case, "constant", "iceProperties")
+    family = {k: float(iceCases.get_entry(props, f"bondFamilies.freeze.{k}"))
+              for k in ("radiusMultiplier", "youngsModulus", "poissonsRatio", "compressionModulus")}
+    bonds = interface_bonds(case, family, states)
+    check(len(bonds[0]) == reported > 0, f"layer-keel freeze-bonds in ridge.h5: {len(bonds[0])}, the log reports {reported}")
+    return bonds, (family["youngsModulus"], family["poissonsRatio"], family["compressionModulus"])
+
+
 def pull_up(work, bin_dir, strength_set):
     # The interface fails at about 1.6 mm of lift with the keel-bond case's compliant freeze-bonds
     # (2.81 MPa) and the ultimate set's calibrated particle strengths: 3 mm are enough.
@@ -272,29 +337,28 @@ def pull_up(work, bin_dir, strength_set):
                       entries=(("assembly.relaxTime", 0.1),))
     if strength_set == "none":
         weaken_freeze_bonds(case)
-    log = os.path.join(case, "log.ridgeDEM")
     iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
     s = iceCases.summary(case)
     if strength_set == "none":
         return
-    reported = int(next(line for line in open(log) if "between layer and keel" in line)
-                   .split(" between layer and keel")[0].rsplit("(", 1)[1])
-    ice = {"radiusMultiplier": float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"),
-                                                        "bondFamilies.freeze.radiusMultiplier"))}
-    E = float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"), "bondFamilies.freeze.youngsModulus"))
-    nu = float(iceCases.get_entry(os.path.join(case, "constant", "iceProperties"), "bondFamilies.freeze.poissonsRatio"))
-    area, tensile, shear, normal, length = interface_bonds(case, ice)
-    check(len(area) == reported > 0, f"layer-keel freeze-bonds in ridge.h5: {len(area)}, the log reports {reported}")
+    (area, tensile, shear, normal, length), (E, nu, E_compression) = interface_springs(case)
+    reported = len(area)
     interface = LENGTH * WIDTH
     measured = s["interface_strength_Pa"]
     check(abs(s["interface_area_m2"] - interface) < 1e-12, f"interface area {s['interface_area_m2']} m2 = L B")
     simple = reported * area.mean() * tensile.mean() / interface
-    peak, movement = elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, np.array([0.0, 0.0, 1.0]))
+    peak, movement = elastic_brittle_peak(area, tensile, shear, normal, length, E, nu, np.array([0.0, 0.0, 1.0]),
+                                          E_compression)
     # The springs, strengths and geometry are the program's; what differs is the sampling of the
     # curve (1 um of a ~1.6 mm rise) and unbonded contacts: 2 %.
     check(abs(measured / (peak / interface) - 1) < 0.02,
           f"interface strength {measured * 1e-3:.3f} kPa against {peak / interface * 1e-3:.3f} kPa, the "
           f"elastic-brittle sum over the {len(area)} bonds (peak at {movement * 1e6:.1f} um; within 2 %)")
+    # Lifted clear, the layer's contacts with the keel let go: the bonds' share is the actuator's.
+    bonds_only = s["interface_bond_strength_Pa"]
+    check(abs(bonds_only / measured - 1) < 0.02,
+          f"the bonds' share of the pull-up {bonds_only * 1e-3:.3f} kPa against the actuator's "
+          f"{measured * 1e-3:.3f} kPa (within 2 %)")
     # The textbook value assumes every bond vertical, all breaking together: an upper bound,
     # reached by the inclined bonds only in part.
     check(0.5 * simple < measured <= simple * 1.001,
@@ -303,6 +367,67 @@ def pull_up(work, bin_dir, strength_set):
           f"{measured / simple:.1%} of it (between 50 % and 100 %)")
     broken = s["layer_keel_bonds_broken"]
     check(broken == reported, f"all {reported} layer-keel bonds broke ({broken})")
+
+
+def direct_shear(work, bin_dir):
+    """The layer pushed along the beam over the held keel: the bonds' share of the actuator's
+    force against the bond law on a rigid slide, and the layer's spheres ploughing into the keel's."""
+    case = ridge_case("keelBond", os.path.join(work, "directShear"), work,
+                      controls=(("maxTravel", SHEAR_TRAVEL), ("sampleInterval", 1e-5)),
+                      entries=(("assembly.relaxTime", 0.1), ("test.type", "directShear"), ("test.speed", 0.1)))
+    iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
+    s = iceCases.summary(case)
+    (area, tensile, shear, normal, length, separation, rest, slip), moduli = interface_springs(case, states=True)
+    # The linear sum (elastic_brittle_peak) is no reference here: the interface fails over
+    # millimetres of slide on 5 cm bonds, which turns them (3.5 times off on this keel).
+    curve = np.genfromtxt(os.path.join(case, "postProcessing", "platenForce.csv"), delimiter=",", names=True)
+    # Stepped 1 um at a time (the program steps 1.9 um; finer changes nothing) and read at the samples.
+    travel = np.union1d(np.arange(1, int(curve["travel"][-1] / 1e-6) + 1) * 1e-6, curve["travel"])
+    force, broken = rigid_slide_bond_force(area, tensile, shear, length, separation, rest, slip, *moduli,
+                                           np.array([1.0, 0.0, 0.0]), travel)
+    at_samples = np.searchsorted(travel, curve["travel"])
+    reference = force[at_samples]
+    bonds = curve["interfaceBondForce"]
+    # Each bond breaks where the bond law says (the curve's brokenBonds: nothing but these break).
+    breaks = [travel[np.argmax(broken >= k)] for k in range(1, len(area) + 1)]
+    measured_breaks = [curve["travel"][np.argmax(curve["brokenBonds"] >= k)] for k in range(1, len(area) + 1)]
+    spacing = np.max(np.diff(curve["travel"]))
+    off = max(abs(m - b) - spacing for m, b in zip(measured_breaks, breaks))
+    check(off < 0.001 * max(breaks),
+          f"the {len(area)} bonds break at the travels of the bond law on a rigid slide, "
+          f"{', '.join(f'{b * 1e3:.2f}' for b in breaks)} mm: at most {off * 1e6:.1f} um off beyond the "
+          f"{spacing * 1e6:.1f} um between samples (within 0.1 % of the last)")
+    same = broken[at_samples] == curve["brokenBonds"]
+    worst = np.max(np.abs(bonds - reference)[same])
+    check(same.mean() > 0.98 and worst < 0.01 * reference.max(),
+          f"the bonds' share of the shear force follows the bond law on a rigid slide: at most {worst:.1f} N "
+          f"off (within 1 % of its {reference.max():.0f} N peak) over the {same.sum()} of {len(bonds)} samples "
+          f"with the same bonds intact")
+    peak = s["interface_bond_peak_N"]
+    check(abs(peak / reference.max() - 1) < 0.01,
+          f"the bonds' peak {peak:.0f} N at {s['travel_at_interface_bond_peak_m'] * 1e3:.2f} mm against "
+          f"{reference.max():.0f} N at {curve['travel'][np.argmax(reference)] * 1e3:.2f} mm (within 1 %)")
+    # The actuator also pushes the layer's spheres through the held keel's: more than the bonds.
+    at_peak = np.argmax(bonds)
+    check(curve["force"][at_peak] > 1.5 * bonds[at_peak],
+          f"at the bonds' peak the actuator pushes {curve['force'][at_peak]:.0f} N, more than the bonds' "
+          f"{bonds[at_peak]:.0f} N (the layer ploughs into the held keel)")
+    broken = s["layer_keel_bonds_broken"]
+    check(broken == len(area), f"all {len(area)} layer-keel bonds broke ({broken})")
+
+    # On two ranks the bonds' share is summed from each rank's own layer particles.
+    two = ridge_case("keelBond", os.path.join(work, "directShear_2ranks"), work,
+                     controls=(("maxTravel", SHEAR_TRAVEL), ("sampleInterval", 1e-5)),
+                     entries=(("assembly.relaxTime", 0.1), ("test.type", "directShear"), ("test.speed", 0.1)))
+    os.makedirs(os.path.join(two, "DEM"), exist_ok=True)
+    shutil.copy(os.path.join(case, "DEM", "ridge.h5"), os.path.join(two, "DEM", "ridge.h5"))
+    iceCases.run_app(os.path.join(bin_dir, "ridgeDEM"), two, 2, ["-stage", "load"], "log.ridgeDEM")
+    other = np.genfromtxt(os.path.join(two, "postProcessing", "platenForce.csv"), delimiter=",", names=True)
+    rows = min(len(other), len(bonds))
+    apart = np.max(np.abs(other["interfaceBondForce"][:rows] - bonds[:rows]))
+    check(len(other) == len(bonds) and apart < 1e-9 * reference.max(),
+          f"2 ranks give the bonds' share of 1 rank: {len(other)} samples against {len(bonds)}, at most "
+          f"{apart:.2e} N apart (round-off: within 1e-9 of the peak)")
 
 
 def bad_input(work, bin_dir):
@@ -529,6 +654,8 @@ def main():
         compare(work)
     elif step == "pullUp":
         pull_up(work, bin_dir, sys.argv[4])
+    elif step == "directShear":
+        direct_shear(work, bin_dir)
     elif step == "badInput":
         bad_input(work, bin_dir)
     elif step == "stale":

@@ -97,15 +97,15 @@ def run_dir(run, resolution):
 
 
 def made_from(run, resolution):
-    """What a run folder is made from: the run's row, and the content of the case's inputs and of
-    its keel. A folder made from anything else is stale: made again, never reused or skipped."""
-    digest = hashlib.sha256(json.dumps([run, resolution], sort_keys=True).encode())
+    """What a run folder is made from: the run's row, and the content of the case's inputs (with
+    what they include) and of its keel. A folder made from anything else is stale: made again, never reused or skipped."""
+    # A layer alone has no freeze-bonds: the set it carries (the first run's) is no input of it.
+    row = {k: v for k, v in run.items() if not (run.get("alone") and k == "set")}
+    digest = hashlib.sha256(json.dumps([row, resolution], sort_keys=True).encode())
     files = [] if run.get("alone") else [iceCases.keel_file(keel_case(run, resolution))]
-    for sub in ("constant", "system"):
-        for folder, _, names in sorted(os.walk(os.path.join(CASE, sub))):
-            files += [os.path.join(folder, n) for n in sorted(names)]
-    files += [os.path.join(CASE, "DEM", "in.ridge")]
-    files += sorted(os.path.join(CASE, "..", "common", n) for n in os.listdir(os.path.join(CASE, "..", "common")))
+    # The case's dictionaries and what they include of ../common (not its other calibrations).
+    files += iceCases.input_files([os.path.join(CASE, "constant"), os.path.join(CASE, "system"),
+                                   os.path.join(CASE, "DEM", "in.ridge")])
     for path in files:
         if os.path.isfile(path):
             digest.update(path.encode())

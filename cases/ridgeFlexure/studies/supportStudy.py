@@ -33,7 +33,7 @@ The default resolution of the ridge case takes 3-26 min a run with a keel
 (README): the ridge runs use the quick one (tens of seconds); only the layer
 alone is run at the default resolution too (9-11 min a run), for beam theory.
 
-Writes runs/supportStudy/supportStudy.{csv,md,png}; --publish copies them into
+Writes runs/supportStudy/supportStudy.{csv,md,png}; --publish (the README's table too) copies them into
 results/ (refuses unless every run of the study is finished).
 
 Usage: studies/supportStudy.py [--jobs N] [--subjects beam,layer,run08,run15]
@@ -44,6 +44,7 @@ import concurrent.futures
 import json
 import os
 import sys
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
@@ -260,7 +261,14 @@ def main():
         if missing:
             sys.exit("supportStudy.py --publish: unfinished runs: " + ", ".join(missing))
         write([row(s, c) for s, c in everything], os.path.join(CASE, "results"))
-        print("published results/supportStudy.{csv,md,png}")
+        table = open(os.path.join(CASE, "results", "supportStudy.md")).read()
+        table = table[table.index("| subject"):]
+        iceCases.write_readme_section(
+            os.path.join(CASE, "README.md"), "supportStudy table",
+            "Published by `studies/supportStudy.py --publish` at revision `%s` on %s; generated from "
+            "`results/supportStudy.md`.\n\n%s" % (iceCases.git_revision(), time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+                                                   table))
+        print("published results/supportStudy.{csv,md,png} and the README's table")
         return
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         for target, wall in pool.map(lambda sc: execute(*sc), pairs):

@@ -14,7 +14,9 @@ all), 60 mm of travel; its first freeze-bond failures come from postProcessing/b
   sweep   the case's own freeze-bonds (2.81 MPa, strengths calibrated at that modulus) at
           0.05 m/s: the sets 2 min / 4 h / ultimate on the settled heap and on the keel compacted
           to 0.35, and the 4 h set on keels compacted to 0.30 / 0.40 / 0.45 (each keel's porosity
-          at bonding is reported: a compacted heap springs back when the lid backs off).
+          at bonding is reported: a compacted heap springs back when the lid backs off), and on
+          keels compacted to 0.30-0.45 whose lid holds the target gap while they are bonded
+          ("held": the freeze-bonds made while the compaction's pressure acts).
 
 Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
 marked). --publish copies the three into ../results/ as punchStudy_<study>.* and the table
@@ -64,16 +66,23 @@ def settled_keel(work):
     return os.path.join(keel, "DEM", "settled.h5")
 
 
-def compacted_keel(work, porosity):
+def compacted_keel(work, porosity, held=False):
     """A keel of the same ice as the settled heap (a rubbleThickness layer at porosity 0.40), rained
-    in and compacted between plates to `porosity`: (stage file, its summary) or (None, the reason)."""
-    keel = os.path.join(work, "keels", f"compacted{porosity:g}")
+    in and compacted between plates to `porosity`: (stage file, its summary) or (None, the reason).
+    held: the lid does not back off to the case's holdPressure but holds the target gap, so that
+    the freeze-bonds are made at the target porosity while the compaction's pressure still acts
+    (the reference method), not after the rubble sprang back."""
+    keel = os.path.join(work, "keels", f"compacted{porosity:g}" + ("held" if held else ""))
     stage = os.path.join(keel, "DEM", "compacted.h5")
     if not os.path.exists(stage):
         # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
         thickness = BOX[2] * (1 - ICE_POROSITY) / (1 - porosity)
+        entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity}
+        if held:
+            props = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
+            entries["compaction.holdPressure"] = 0.99 * float(iceCases.get_entry(props, "compaction.maxPressure"))
         iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), keel, BOX[0], BOX[1], thickness, 6, 15,
-                                   {"settling.minTime": 1, "compaction.targetPorosity": porosity})
+                                   entries)
         try:
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
@@ -161,9 +170,17 @@ def sweep_points(work):
         elif porosity != 0.35:
             points.append((row, dict(run=os.path.join(work, "sweep", f"porosity_{porosity:g}"), stage=stage,
                                      speed=0.05)))
+    held = {porosity: compacted_keel(work, porosity, held=True) for porosity in (0.30, 0.35, 0.40, 0.45)}
+    for porosity, (stage, info) in held.items():
+        row = {"set": "4h", "keel": f"compacted to {porosity:g}, held"}
+        points.append((row, {"refused": info} if stage is None else
+                       dict(run=os.path.join(work, "sweep", f"porosity_{porosity:g}_held"), stage=stage, speed=0.05)))
     extra = {f"keel compacted to {p:g}": ("settled %.3f, closed to %.3f, %.3f held at the hold pressure when bonded"
                                           % (info["settled"], info["closed"], info["held"]))
              if stage else f"refused: {info}" for p, (stage, info) in keels.items()}
+    extra.update({f"keel compacted to {p:g}, held": ("settled %.3f, closed to %.3f, %.3f with the lid holding the gap "
+                                                     "when bonded" % (info["settled"], info["closed"], info["held"]))
+                  if stage else f"refused: {info}" for p, (stage, info) in held.items()})
     return points, extra
 
 
@@ -197,7 +214,11 @@ def main():
         futures = [(row, pool.submit(punch, **kw) if "run" in kw else None, kw) for row, kw in points]
         results = []
         for row, future, kw in futures:
-            results.append((row, future.result() if future else {"refused": kw["refused"]}, kw.get("run")))
+            try:
+                outcome = future.result() if future else {"refused": kw["refused"]}
+            except RuntimeError as error:    # the application's message, in the table
+                outcome = {"refused": "failed: " + iceCases.fatal_message(error)}
+            results.append((row, outcome, kw.get("run") if "refused" not in outcome else None))
             print(row, results[-1][1], flush=True)
     keys = list(points[0][0])
     lines = [",".join(keys + COLUMNS)]
