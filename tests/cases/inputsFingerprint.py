@@ -12,14 +12,8 @@ import subprocess
 import sys
 import tempfile
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if not ok:
-        failures.append(what)
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 def fingerprint(top, case, *paths, words=()):
     script = f'source "{top}/bin/caseCommon.sh"; inputs_fingerprint "$@"'
@@ -71,7 +65,7 @@ def main():
     check("../common/freezeBondCalibrationCompliant" in listed and "../common/freezeBondProperties" in listed
           and not any("freezeBondCalibrationRidge" in p for p in listed),
           f"keelBond's inputs include the calibration it includes, not the ridge's: {', '.join(listed)}")
-    sys.exit(1 if failures else 0)
+    finish()
 
 
 if __name__ == "__main__":

@@ -11,14 +11,8 @@ import os
 import sys
 import tempfile
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if not ok:
-        failures.append(what)
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 def run_folder(root, name, forces, summary):
     folder = os.path.join(root, name, "postProcessing")
@@ -51,7 +45,7 @@ def main():
         check(ridgeMatrix.stopped_after_failure(before) is None, "stopped at 94 % of its peak: not a result")
         check(ridgeMatrix.stopped_after_failure(finished) is None, "a finished run is no stopped run")
         check(ridgeMatrix.stopped_after_failure(killed) is None, "a run without a reason (killed) is no stopped run")
-    sys.exit(1 if failures else 0)
+    finish()
 
 
 if __name__ == "__main__":
