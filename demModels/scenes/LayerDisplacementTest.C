@@ -9,7 +9,6 @@
 #include "atom.h"
 #include "lammps.h"
 
-#include <algorithm>
 #include <utility>
 
 namespace iceDEM
@@ -76,17 +75,12 @@ void LayerDisplacementTest::addFigures
     j["interface_area_m2"] = area;
     j["interface_strength_Pa"] = (peak - startForce) / area;
 
-    const std::vector<std::string>& columns = curve.columns();
-    const std::size_t column = std::find(columns.begin(), columns.end(), "interfaceBondForce") - columns.begin();
-    if (curve.nRows() == 0 || column == columns.size())
+    if (curve.nRows() == 0)
     {
         return;
     }
-    std::size_t atPeak = 0;
-    for (std::size_t k = 1; k < curve.nRows(); ++k)
-    {
-        if (curve.row(k)[column] > curve.row(atPeak)[column]) atPeak = k;
-    }
+    const std::size_t column = curve.columnIndex("interfaceBondForce");
+    const std::size_t atPeak = curve.rowOfLargest(column);
     const double bondPeak = curve.row(atPeak)[column];
     j["interface_bond_peak_N"] = bondPeak;
     j["interface_bond_force_at_start_N"] = curve.row(0)[column];

@@ -1058,18 +1058,12 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     const std::size_t rows = curve.nRows();
     double peak = -HUGE_VAL, travelAtPeak = 0.0, shareAtPeak = 0.0;
     const double startForce = rows > 0 ? curve.row(0)[PlatenLoading::forceColumn] : 0.0;
-    const std::vector<std::string>& columns = curve.columns();
-    const std::size_t shareColumn =
-        std::find(columns.begin(), columns.end(), "buoyancyShare") - columns.begin();
-    for (std::size_t k = 0; k < rows; ++k)
+    if (rows > 0)
     {
-        const std::vector<double>& row = curve.row(k);
-        if (row[PlatenLoading::forceColumn] > peak)
-        {
-            peak = row[PlatenLoading::forceColumn];
-            travelAtPeak = row[PlatenLoading::travelColumn];
-            shareAtPeak = row[shareColumn];
-        }
+        const std::vector<double>& row = curve.row(curve.rowOfLargest(PlatenLoading::forceColumn));
+        peak = row[PlatenLoading::forceColumn];
+        travelAtPeak = row[PlatenLoading::travelColumn];
+        shareAtPeak = row[curve.columnIndex("buoyancyShare")];
     }
     // Freeze-bonds broken in tension, and those between layer and keel.
     std::size_t freezeBroken = 0, freezeTension = 0, interfaceBroken = 0;
@@ -1101,8 +1095,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["water_level_m"] = g.waterLevel;
     j["freeze_bond_set"] = freezeBondProperties_.summary();
     j["end_support"] = settings_.endSupport->summary();
-    const std::size_t reactionColumn =
-        std::find(columns.begin(), columns.end(), "supportReaction") - columns.begin();
+    const std::size_t reactionColumn = curve.columnIndex("supportReaction");
     double reactionAtPeak = 0.0;
     for (std::size_t k = 0; k < rows; ++k)
     {

@@ -93,3 +93,19 @@ TEST(CsvWriter, EachWriteRewritesTheWholeFile)
     EXPECT_EQ(nFiles, 1u);
     fs::remove_all(dir);
 }
+
+
+TEST(CsvWriter, FindsColumnsByNameAndTheFirstRowOfAColumnsLargestValue)
+{
+    CsvWriter table({"travel", "force"});
+    EXPECT_EQ(table.columnIndex("force"), 1u);
+    EXPECT_THROW(table.columnIndex("reaction"), std::invalid_argument);
+    EXPECT_THROW(table.rowOfLargest(1), std::out_of_range);
+    table.addRow({0.0, 2.0});
+    table.addRow({1.0, 5.0});
+    table.addRow({2.0, 3.0});
+    table.addRow({3.0, 5.0});
+    EXPECT_EQ(table.rowOfLargest(1), 1u);   // the first of two equal maxima
+    EXPECT_EQ(table.rowOfLargest(0), 3u);
+    EXPECT_THROW(table.rowOfLargest(2), std::out_of_range);
+}

@@ -78,6 +78,32 @@ void CsvWriter::addRow(const std::vector<double>& values)
 }
 
 
+std::size_t CsvWriter::columnIndex(const std::string& name) const
+{
+    const auto found = std::find(columns_.begin(), columns_.end(), name);
+    if (found == columns_.end())
+    {
+        throw std::invalid_argument("CsvWriter: no column '" + name + "'");
+    }
+    return static_cast<std::size_t>(found - columns_.begin());
+}
+
+
+std::size_t CsvWriter::rowOfLargest(std::size_t column) const
+{
+    if (rows_.empty())
+    {
+        throw std::out_of_range("CsvWriter: no rows");
+    }
+    std::size_t largest = 0;
+    for (std::size_t k = 1; k < rows_.size(); ++k)
+    {
+        if (rows_[k].at(column) > rows_[largest].at(column)) largest = k;
+    }
+    return largest;
+}
+
+
 std::string CsvWriter::text() const
 {
     std::string text;
