@@ -8,6 +8,7 @@ Used by the sweep, speed-study and benchmark scripts with Debian's
 import argparse
 import csv
 import filecmp
+import hashlib
 import json
 import os
 import re
@@ -265,6 +266,43 @@ def kill_after_new_checkpoint(app, case, args, checkpoint, log_name, delay=0.0):
         time.sleep(delay)
         run.kill()
         run.wait()
+
+
+def folder_fingerprint(folder, settings=(), upstream=()):
+    """A digest of what a freshly prepared run folder is made from: every file in it (its
+    dictionaries: nothing has run there yet) and the files they #include, by path relative to the
+    folder and content; its settings (the application's arguments, JSON); and the upstream files
+    it reads by name (a keel)."""
+    digest = hashlib.sha256(json.dumps(list(settings), sort_keys=True).encode())
+    own = input_files([folder])
+    named = [(os.path.relpath(p, folder), p) for p in own] + [(os.path.abspath(p), p) for p in upstream]
+    for name, path in named:
+        digest.update(name.encode())
+        with open(path, "rb") as f:
+            digest.update(f.read())
+    return digest.hexdigest()[:16]
+
+
+def prepared_run(target, prepare, settings=(), upstream=()):
+    """The run folder `target` as prepare(folder) makes it (a case copied, entries set), reused
+    only when it was made from the same inputs (folder_fingerprint, recorded in target/madeFrom).
+    One made from other inputs, or with no record, is removed and made again, so a study skips a
+    finished run, and resumes a checkpoint, only for the inputs that made it."""
+    scratch = target.rstrip(os.sep) + ".preparing"
+    shutil.rmtree(scratch, ignore_errors=True)
+    prepare(scratch)
+    made_from = folder_fingerprint(scratch, settings, upstream)
+    stamp = os.path.join(target, "madeFrom")
+    if os.path.isdir(target):
+        if os.path.exists(stamp) and open(stamp).read().strip() == made_from:
+            shutil.rmtree(scratch)
+            return target
+        print(f"{target} was made from other inputs (its dictionaries, what they include, its settings "
+              "or its upstream files changed, or it has no madeFrom record): made again", flush=True)
+        shutil.rmtree(target)
+    write_atomically(os.path.join(scratch, "madeFrom"), made_from + "\n")
+    os.replace(scratch, target)
+    return target
 
 
 def finished(case):

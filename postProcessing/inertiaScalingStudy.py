@@ -34,7 +34,6 @@ import csv
 import json
 import math
 import os
-import shutil
 import sys
 import threading
 
@@ -94,73 +93,88 @@ def set_limit(case, control="system/controlDict"):
 # ---- the four scenes: a case folder for (factor, seed), the application, its figures ----
 
 def beam_case(work, factor, seed):
-    case = os.path.join(work, "beam", f"s{factor:g}_seed{seed}")
-    if not iceCases.finished(case):
-        iceCases.copy_case(os.path.join(CASES, "levelIceBeam"), case)
-        props = os.path.join(case, "constant", "beamProperties")
+    def prepare(folder):
+        iceCases.copy_case(os.path.join(CASES, "levelIceBeam"), folder)
+        props = os.path.join(folder, "constant", "beamProperties")
         iceCases.set_entry(props, "inertiaScaling", factor)
         iceCases.set_entry(props, "packing.seed", seed)
-        set_limit(case)
-        iceCases.run_app(bin_path("iceBeamDEM"), case, 1,
-                         ["-particles", 1200, "-platenSpeed", BEAM_SPEED], "log.iceBeamDEM")
+        set_limit(folder)
+
+    args = ["-particles", 1200, "-platenSpeed", BEAM_SPEED]
+    case = iceCases.prepared_run(os.path.join(work, "beam", f"s{factor:g}_seed{seed}"), prepare, settings=args)
+    if not iceCases.finished(case):
+        iceCases.run_app(bin_path("iceBeamDEM"), case, 1, args, "log.iceBeamDEM")
     return case
 
 
 def bending_case(work, factor, seed):
-    case = os.path.join(work, "bending", f"s{factor:g}_seed{seed}")
-    if not iceCases.finished(case):
-        iceCases.copy_case(os.path.join(CASES, "threePointBending"), case)
-        props = os.path.join(case, "constant", "bendingProperties")
+    def prepare(folder):
+        iceCases.copy_case(os.path.join(CASES, "threePointBending"), folder)
+        props = os.path.join(folder, "constant", "bendingProperties")
         iceCases.set_entry(props, "inertiaScaling", factor)
         iceCases.set_entry(props, "packing.seed", seed)
-        set_limit(case)
-        iceCases.run_app(bin_path("threePointBendingDEM"), case, 1,
-                         ["-thickness", BENDING_THICKNESS], "log.threePointBendingDEM")
+        set_limit(folder)
+
+    args = ["-thickness", BENDING_THICKNESS]
+    case = iceCases.prepared_run(os.path.join(work, "bending", f"s{factor:g}_seed{seed}"), prepare, settings=args)
+    if not iceCases.finished(case):
+        iceCases.run_app(bin_path("threePointBendingDEM"), case, 1, args, "log.threePointBendingDEM")
     return case
 
 
 def punch_keel(work, seed):
     """The rate study's reduced keel (ridgeSmall.build_keel), of block seed `seed`."""
     import ridgeSmall
-    folder = os.path.join(work, "punch", f"keels_seed{seed}")
+
+    def prepare(folder):
+        keel = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(folder, "keel"))
+        props = os.path.join(keel, "constant", "rubbleProperties")
+        for entry, value in (("box.length", ridgeSmall.LENGTH), ("box.width", ridgeSmall.WIDTH),
+                             ("blocks.rubbleThickness", 0.25), ("settling.maxTime", 4),
+                             ("settling.minTime", 1), ("settling.maxTilt", 30), ("blocks.seed", seed)):
+            iceCases.set_entry(props, entry, value)
+
     with lock:
+        folder = iceCases.prepared_run(os.path.join(work, "punch", f"keels_seed{seed}"), prepare)
         if not os.path.exists(ridgeSmall.keel_file(folder)):
-            keel = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(folder, "keel"))
-            props = os.path.join(keel, "constant", "rubbleProperties")
-            for entry, value in (("box.length", ridgeSmall.LENGTH), ("box.width", ridgeSmall.WIDTH),
-                                 ("blocks.rubbleThickness", 0.25), ("settling.maxTime", 4),
-                                 ("settling.minTime", 1), ("settling.maxTilt", 30), ("blocks.seed", seed)):
-                iceCases.set_entry(props, entry, value)
-            iceCases.run_app(bin_path("rubbleDEM"), keel, 1, ["-stage", "settle"], "log.rubbleDEM")
+            iceCases.run_app(bin_path("rubbleDEM"), os.path.join(folder, "keel"), 1, ["-stage", "settle"],
+                             "log.rubbleDEM")
     return folder
 
 
 def punch_case(work, factor, seed):
     import ridgeSmall
-    case = os.path.join(work, "punch", f"s{factor:g}_seed{seed}")
-    if not iceCases.finished(case):
-        keels = punch_keel(work, seed)
-        ridgeSmall.ridge_case("rubblePunch", case, keels,
+    keels = punch_keel(work, seed)
+
+    def prepare(folder):
+        ridgeSmall.ridge_case("rubblePunch", folder, keels,
                               controls=(("maxTravel", 0.03), ("sampleInterval", 1e-5), ("writeInterval", 0.01),
                                         ("checkpointInterval", 0.03)),
                               entries=(("test.speed", PUNCH_SPEED), ("test.inertiaScaling", factor)))
-        set_limit(case)
+        set_limit(folder)
+
+    case = iceCases.prepared_run(os.path.join(work, "punch", f"s{factor:g}_seed{seed}"), prepare,
+                                 upstream=[ridgeSmall.keel_file(keels)])
+    if not iceCases.finished(case):
         iceCases.run_app(bin_path("ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
     return case
 
 
 def ridge_case(work, factor, seed):
     import ridgeMatrix
-    case = os.path.join(work, "ridge", f"s{factor:g}_seed{seed}")
-    if not iceCases.finished(case):
-        run = next(r for r in ridgeMatrix.matrix() if r["run"] == RIDGE_RUN)
-        shutil.rmtree(case, ignore_errors=True)     # prepare keeps an existing folder as it is
-        ridgeMatrix.prepare(run, "quick", case)
-        props = os.path.join(case, "constant", "ridgeProperties")
+    run = next(r for r in ridgeMatrix.matrix() if r["run"] == RIDGE_RUN)
+
+    def prepare(folder):
+        ridgeMatrix.prepare(run, "quick", folder)
+        props = os.path.join(folder, "constant", "ridgeProperties")
         iceCases.set_entry(props, "test.speed", RIDGE_SPEED)
         iceCases.set_entry(props, "test.inertiaScaling", factor)
         iceCases.set_entry(props, "consolidatedLayer.seed", seed)
-        set_limit(case)
+        set_limit(folder)
+
+    case = iceCases.prepared_run(os.path.join(work, "ridge", f"s{factor:g}_seed{seed}"), prepare,
+                                 upstream=ridgeMatrix.upstream_files(run, "quick"))
+    if not iceCases.finished(case):
         iceCases.run_app(bin_path("ridgeDEM"), case, 1, ["-stage", "all"], "log.ridgeDEM")
     return case
 

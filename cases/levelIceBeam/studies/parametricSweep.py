@@ -5,7 +5,7 @@ beta), each on two random packings (seeds 1 and 2) as the reference study did.
 
     ./parametricSweep.py [-jobs 2] [-particles 1200] [-platenSpeed 0.2] [-seeds 1 2]
 
-Resumable: a run whose summary.json exists is not repeated. Writes
+Resumable: a finished run made from the same inputs is not repeated. Writes
 (into -out, default ../runs/parametricSweep; -publish copies them into studies/parametricSweep/)
 results.csv and parametricSweep.png, the
 reference values next to ours for the four trends (modulus raises the slope;
@@ -36,27 +36,32 @@ def reference_runs():
     return list(csv.DictReader(rows))
 
 
+def prepare(ref, seed, case):
+    """The beam case with one reference run's parameters (levelIceParametric.csv) and a packing seed."""
+    iceCases.copy_case(os.path.join(here, ".."), case)
+    ice = os.path.join(case, "constant", "iceProperties")
+    for entry in ("material.youngsModulus", "bondFamilies.ice.youngsModulus"):
+        iceCases.set_entry(ice, entry, ref["E_Pa"])
+    iceCases.set_entry(ice, "bondFamilies.ice.distFactor", ref["distFactor"])
+    iceCases.set_entry(ice, "bondFamilies.ice.breakN", ref["breakN"])
+    iceCases.set_entry(ice, "bondFamilies.ice.beta", ref["beta"])
+    iceCases.set_entry(ice, "damping.hystereticCoeffs.alpha", ref["alpha"])
+    iceCases.set_entry(ice, "maxBondsPerParticle", "64")
+    if float(ref["breakN"]) < 1e-3:
+        # A weak beam peaks within a millimetre: sample the force finely enough to fit it.
+        iceCases.set_entry(os.path.join(case, "system", "controlDict"), "sampleInterval", "1e-5")
+    if float(ref["distFactor"]) > 1.2:
+        # Up to ~47 bonds a particle: the program's stability limit falls as 1/sqrt(bonds).
+        iceCases.set_entry(ice, "timeStep.factor", "0.1")
+    iceCases.set_entry(os.path.join(case, "constant", "beamProperties"), "packing.seed", seed)
+
+
 def run_one(ref, seed, out, particles, speed):
-    case = os.path.join(out, f"run{int(ref['run']):02d}_seed{seed}")
+    args = ["-particles", particles, "-platenSpeed", speed]
+    case = iceCases.prepared_run(os.path.join(out, f"run{int(ref['run']):02d}_seed{seed}"),
+                                 lambda folder: prepare(ref, seed, folder), settings=args)
     if not iceCases.finished(case):
-        iceCases.copy_case(os.path.join(here, ".."), case)
-        ice = os.path.join(case, "constant", "iceProperties")
-        for entry in ("material.youngsModulus", "bondFamilies.ice.youngsModulus"):
-            iceCases.set_entry(ice, entry, ref["E_Pa"])
-        iceCases.set_entry(ice, "bondFamilies.ice.distFactor", ref["distFactor"])
-        iceCases.set_entry(ice, "bondFamilies.ice.breakN", ref["breakN"])
-        iceCases.set_entry(ice, "bondFamilies.ice.beta", ref["beta"])
-        iceCases.set_entry(ice, "damping.hystereticCoeffs.alpha", ref["alpha"])
-        iceCases.set_entry(ice, "maxBondsPerParticle", "64")
-        if float(ref["breakN"]) < 1e-3:
-            # A weak beam peaks within a millimetre: sample the force finely enough to fit it.
-            iceCases.set_entry(os.path.join(case, "system", "controlDict"), "sampleInterval", "1e-5")
-        if float(ref["distFactor"]) > 1.2:
-            # Up to ~47 bonds a particle: the program's stability limit falls as 1/sqrt(bonds).
-            iceCases.set_entry(ice, "timeStep.factor", "0.1")
-        iceCases.set_entry(os.path.join(case, "constant", "beamProperties"), "packing.seed", seed)
-        iceCases.run_app("iceBeamDEM", case, 1, ["-particles", particles, "-platenSpeed", speed],
-                         "log.iceBeamDEM")
+        iceCases.run_app("iceBeamDEM", case, 1, args, "log.iceBeamDEM")
     s = iceCases.summary(case)
     return {
         "run": int(ref["run"]), "seed": seed,

@@ -7,7 +7,7 @@ reports the first (centre-crack) peak, the highest load and their ratio.
     ./secondPeakStudy.py [-particles 1200] [-platenSpeed 0.1] [-seeds 1 2] [-jobs 1]
                          [-variants base mu0.1 ...]
 
-Resumable: a run whose summary.json exists is not repeated. Writes
+Resumable: a finished run made from the same inputs is not repeated. Writes
 (into -out, default ../runs/secondPeakStudy; -publish copies them into studies/secondPeakStudy/)
 results.csv and results.md (mean over the seeds per variant)."""
 import argparse
@@ -35,14 +35,16 @@ VARIANTS = {
 
 
 def run_one(name, seed, out, particles, speed):
-    case = os.path.join(out, f"{name}_seed{seed}")
-    if not iceCases.finished(case):
-        iceCases.copy_case(os.path.join(here, ".."), case)
+    def prepare(folder):
+        iceCases.copy_case(os.path.join(here, ".."), folder)
         for relative, entry, value in VARIANTS[name]:
-            iceCases.set_entry(os.path.join(case, relative), entry, value)
-        iceCases.set_entry(os.path.join(case, "constant", "beamProperties"), "packing.seed", seed)
-        iceCases.run_app("iceBeamDEM", case, 1, ["-particles", particles, "-platenSpeed", speed],
-                         "log.iceBeamDEM")
+            iceCases.set_entry(os.path.join(folder, relative), entry, value)
+        iceCases.set_entry(os.path.join(folder, "constant", "beamProperties"), "packing.seed", seed)
+
+    args = ["-particles", particles, "-platenSpeed", speed]
+    case = iceCases.prepared_run(os.path.join(out, f"{name}_seed{seed}"), prepare, settings=args)
+    if not iceCases.finished(case):
+        iceCases.run_app("iceBeamDEM", case, 1, args, "log.iceBeamDEM")
     s = iceCases.summary(case)
     return {
         "variant": name, "seed": seed,

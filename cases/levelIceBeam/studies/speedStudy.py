@@ -24,11 +24,11 @@ import iceCases  # noqa: E402
 
 
 def run_one(out, particles, speed, ranks):
-    case = os.path.join(out, f"n{particles}_v{speed}")
+    args = ["-particles", particles, "-platenSpeed", speed]
+    case = iceCases.prepared_run(os.path.join(out, f"n{particles}_v{speed}"),
+                                 lambda folder: iceCases.copy_case(os.path.join(here, ".."), folder), settings=args)
     if not iceCases.finished(case):
-        iceCases.copy_case(os.path.join(here, ".."), case)
-        iceCases.run_app("iceBeamDEM", case, ranks, ["-particles", particles, "-platenSpeed", speed],
-                         "log.iceBeamDEM")
+        iceCases.run_app("iceBeamDEM", case, ranks, args, "log.iceBeamDEM")
     return load(case)
 
 

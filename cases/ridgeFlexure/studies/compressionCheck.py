@@ -52,9 +52,11 @@ COLUMNS = ["variant", "freeze_bonds", "peak_kN", "travel_at_peak_mm", "max_trave
            "travel_at_max_kinetic_mm", "broken_bonds", "outcome"]
 
 
-def prepare(name):
-    target = os.path.join(OUT, name)
-    run = next(r for r in ridgeMatrix.matrix() if r["run"] == 3)
+RUN = 3
+
+
+def prepare(name, target):
+    run = next(r for r in ridgeMatrix.matrix() if r["run"] == RUN)
     ridgeMatrix.prepare(run, "quick", target)
     files = {n: os.path.join(target, d, n) for d, n in (("constant", "iceProperties"),
                                                         ("constant", "freezeBondProperties"),
@@ -64,13 +66,14 @@ def prepare(name):
     iceCases.set_entry(files["iceProperties"], "bondFamilies.freeze.compressionModulus", FREEZE)
     for (name_, entry), value in VARIANTS[name][1].items():
         iceCases.set_entry(files[name_], entry, value)
-    return target
 
 
 def execute(name):
     """The variant's row; a run that stopped on an error (a blown-up one that lost a particle) is
     read from the force curve it wrote before stopping, with the application's message."""
-    target = prepare(name)
+    run = next(r for r in ridgeMatrix.matrix() if r["run"] == RUN)
+    target = iceCases.prepared_run(os.path.join(OUT, name), lambda folder: prepare(name, folder),
+                                   upstream=ridgeMatrix.upstream_files(run, "quick"))
     stopped = ""
     if not iceCases.finished(target):
         try:

@@ -3,7 +3,8 @@
 several platen speeds; the force should converge as the speed falls.
 
 Each speed (and consolidated-layer packing seed) is a copy of the run under
-runs/rate_<resolution>/runNN_v<speed>[_seedS]/ (finished ones are skipped, killed ones resume).
+runs/rate_<resolution>/runNN_v<speed>[_seedS]/ (finished ones are skipped, killed ones resume, both
+only when made from the same inputs: iceCases.prepared_run).
 Writes runs/rate_<resolution>/rateConvergence_<resolution>_runNN.csv and .md (per run: peak force, travel at
 peak, the force averaged over +-1 mm at fixed travels, the kinetic to bond-energy ratio at the
 peak, wall time; per speed with several seeds: the mean peak and its spread, which is the scale of
@@ -16,7 +17,6 @@ Usage: studies/rateConvergence.py [--resolution quick|default] [--run 6] [--spee
 """
 import argparse
 import concurrent.futures
-import csv
 import os
 import sys
 
@@ -34,15 +34,18 @@ def speed_dir(run, resolution, speed, seed):
                         "run%02d_v%g%s" % (run["run"], speed, "" if seed == 1 else "_seed%d" % seed))
 
 
+def prepare(run, resolution, speed, seed, folder):
+    ridgeMatrix.prepare(run, resolution, folder)
+    iceCases.set_entry(os.path.join(folder, "constant", "ridgeProperties"), "test.speed", speed)
+    iceCases.set_entry(os.path.join(folder, "constant", "ridgeProperties"), "consolidatedLayer.seed", seed)
+
+
 def execute(run, resolution, speed, seed):
-    target = speed_dir(run, resolution, speed, seed)
-    summary = os.path.join(target, "postProcessing", "summary.json")
-    if os.path.exists(summary):
+    target = iceCases.prepared_run(speed_dir(run, resolution, speed, seed),
+                                   lambda folder: prepare(run, resolution, speed, seed, folder),
+                                   upstream=ridgeMatrix.upstream_files(run, resolution))
+    if iceCases.finished(target):
         return target
-    if not os.path.exists(os.path.join(target, "constant", "ridgeProperties")):
-        ridgeMatrix.prepare(run, resolution, target)
-        iceCases.set_entry(os.path.join(target, "constant", "ridgeProperties"), "test.speed", speed)
-        iceCases.set_entry(os.path.join(target, "constant", "ridgeProperties"), "consolidatedLayer.seed", seed)
     resume = os.path.exists(os.path.join(target, "DEM", "checkpoint"))
     iceCases.run_app("ridgeDEM", target, 1, ["-stage", "all"] + (["-resume"] if resume else []),
                      log_name="log.ridgeDEM")

@@ -96,13 +96,18 @@ def run_dir(run, resolution):
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
 
+def upstream_files(run, resolution):
+    """The saved stages a run reads by name: its keel (a layer alone has none)."""
+    return [] if run.get("alone") else [iceCases.keel_file(keel_case(run, resolution))]
+
+
 def made_from(run, resolution):
     """What a run folder is made from: the run's row, and the content of the case's inputs (with
     what they include) and of its keel. A folder made from anything else is stale: made again, never reused or skipped."""
     # A layer alone has no freeze-bonds: the set it carries (the first run's) is no input of it.
     row = {k: v for k, v in run.items() if not (run.get("alone") and k == "set")}
     digest = hashlib.sha256(json.dumps([row, resolution], sort_keys=True).encode())
-    files = [] if run.get("alone") else [iceCases.keel_file(keel_case(run, resolution))]
+    files = upstream_files(run, resolution)
     # The case's dictionaries and what they include of ../common (not its other calibrations).
     files += iceCases.input_files([os.path.join(CASE, "constant"), os.path.join(CASE, "system"),
                                    os.path.join(CASE, "DEM", "in.ridge")])

@@ -4,7 +4,7 @@ specimens under each end support (clamped, pinned, simple, floating), with
 beam theory beside the consolidated layer alone.
 
 Subjects (one rank each, --jobs at a time, each run in
-runs/supportStudy/<subject>_<support>/; a finished run is skipped):
+runs/supportStudy/<subject>_<support>/; a finished run made from the same inputs is skipped):
 
   beam    ../levelIceBeam at 1,200 particles (its parametric studies'
           resolution, the cheapest the case documents; it still breaks as a
@@ -41,7 +41,6 @@ Usage: studies/supportStudy.py [--jobs N] [--subjects beam,layer,run08,run15]
 """
 import argparse
 import concurrent.futures
-import json
 import os
 import sys
 import time
@@ -73,11 +72,9 @@ def matrix_run(number):
     return next(r for r in ridgeMatrix.matrix() if r["run"] == number)
 
 
-def prepare(subject, support):
-    target = run_folder(subject, support)
+def prepare(subject, support, target):
     if subject == "beam":
-        if not os.path.exists(os.path.join(target, "constant")):
-            iceCases.copy_case(BEAM_CASE, target)
+        iceCases.copy_case(BEAM_CASE, target)
         props = os.path.join(target, "constant", "beamProperties")
         iceCases.set_entry(props, "beam.endSupport", support)
         return target
@@ -98,8 +95,17 @@ def prepare(subject, support):
     return target
 
 
+def upstream_files(subject):
+    """The keel a ridge subject reads (the layers and the beam read none)."""
+    if subject.startswith("run"):
+        return ridgeMatrix.upstream_files(matrix_run(int(subject[3:])), "quick")
+    return []
+
+
 def execute(subject, support):
-    target = prepare(subject, support)
+    target = iceCases.prepared_run(run_folder(subject, support), lambda folder: prepare(subject, support, folder),
+                                   settings=[BEAM_PARTICLES] if subject == "beam" else [],
+                                   upstream=upstream_files(subject))
     if iceCases.finished(target):
         return target, None
     if subject == "beam":

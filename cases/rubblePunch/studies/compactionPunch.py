@@ -18,24 +18,30 @@ CASE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def keel(work):
-    path = os.path.join(work, "keel")
+    path = iceCases.prepared_run(
+        os.path.join(work, "keel"),
+        lambda folder: iceCases.small_rubble_case(os.path.join(CASE, "..", "rubbleBeam"), folder, 1.6, 0.4, 0.3, 6, 15,
+                                                  {"compaction.targetPorosity": 0.40, "settling.minTime": 1}))
     if not os.path.exists(os.path.join(path, "DEM", "compacted.h5")):
-        iceCases.small_rubble_case(os.path.join(CASE, "..", "rubbleBeam"), path, 1.6, 0.4, 0.3, 6, 15,
-                                   {"compaction.targetPorosity": 0.40, "settling.minTime": 1})
         iceCases.run_app("rubbleDEM", path, 1, ["-stage", "settle"], "log.settle")
         iceCases.run_app("rubbleDEM", path, 1, ["-stage", "compact"], "log.compact")
     return path
 
 
 def punch(work, keel_dir, stage_file):
-    run = iceCases.copy_case(CASE, os.path.join(work, stage_file.split(".")[0]))
-    props = os.path.join(run, "constant", "ridgeProperties")
-    text = open(props).read()
-    open(props, "w").write(text.replace("\nconsolidatedLayer", "\nbox\n{\n    length 1.6;\n    width 0.4;\n}\n\nconsolidatedLayer", 1))
-    iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel_dir, "DEM", stage_file))
-    for entry, value in (("test.settleTime", 0.05), ("ends.fixedLength", 0.1), ("test.speed", 0.05)):
-        iceCases.set_entry(props, entry, value)
-    iceCases.set_entry(os.path.join(run, "system", "controlDict"), "maxTravel", 0.06)
+    stage = os.path.join(keel_dir, "DEM", stage_file)
+
+    def prepare(folder):
+        iceCases.copy_case(CASE, folder)
+        props = os.path.join(folder, "constant", "ridgeProperties")
+        text = open(props).read()
+        open(props, "w").write(text.replace("\nconsolidatedLayer", "\nbox\n{\n    length 1.6;\n    width 0.4;\n}\n\nconsolidatedLayer", 1))
+        iceCases.set_entry(props, "keel.settledRubble", '"%s"' % stage)
+        for entry, value in (("test.settleTime", 0.05), ("ends.fixedLength", 0.1), ("test.speed", 0.05)):
+            iceCases.set_entry(props, entry, value)
+        iceCases.set_entry(os.path.join(folder, "system", "controlDict"), "maxTravel", 0.06)
+
+    run = iceCases.prepared_run(os.path.join(work, stage_file.split(".")[0]), prepare, upstream=[stage])
     if not iceCases.finished(run):
         iceCases.run_app("ridgeDEM", run, 1, ["-stage", "all"], "log.ridgeDEM")
     s = iceCases.summary(run)

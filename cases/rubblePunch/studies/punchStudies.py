@@ -26,7 +26,6 @@ usage: studies/punchStudies.py {cause,sweep} [--work DIR] [--jobs N] [--publish]
        (default WORK runs/punchStudies; each about 6 min on 2 cores)"""
 import argparse
 import concurrent.futures
-import json
 import os
 import re
 import sys
@@ -57,11 +56,13 @@ def calibrated_4h_particle_strengths():
 
 
 def settled_keel(work):
-    keel = os.path.join(work, "keels", "settled")
-    if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
-        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), keel, *BOX, 6, 15,
+    def prepare(folder):
+        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), folder, *BOX, 6, 15,
                                    {"settling.minTime": 1})
-        iceCases.uncompacted(os.path.join(keel, "constant", "rubbleProperties"), ICE_POROSITY)
+        iceCases.uncompacted(os.path.join(folder, "constant", "rubbleProperties"), ICE_POROSITY)
+
+    keel = iceCases.prepared_run(os.path.join(work, "keels", "settled"), prepare)
+    if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
         iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
     return os.path.join(keel, "DEM", "settled.h5")
 
@@ -72,17 +73,18 @@ def compacted_keel(work, porosity, held=False):
     held: the lid does not back off to the case's holdPressure but holds the target gap, so that
     the freeze-bonds are made at the target porosity while the compaction's pressure still acts
     (the reference method), not after the rubble sprang back."""
-    keel = os.path.join(work, "keels", f"compacted{porosity:g}" + ("held" if held else ""))
+    # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
+    thickness = BOX[2] * (1 - ICE_POROSITY) / (1 - porosity)
+    entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity}
+    if held:
+        props = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
+        entries["compaction.holdPressure"] = 0.99 * float(iceCases.get_entry(props, "compaction.maxPressure"))
+    keel = iceCases.prepared_run(
+        os.path.join(work, "keels", f"compacted{porosity:g}" + ("held" if held else "")),
+        lambda folder: iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), folder, BOX[0], BOX[1],
+                                                  thickness, 6, 15, entries))
     stage = os.path.join(keel, "DEM", "compacted.h5")
     if not os.path.exists(stage):
-        # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
-        thickness = BOX[2] * (1 - ICE_POROSITY) / (1 - porosity)
-        entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity}
-        if held:
-            props = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
-            entries["compaction.holdPressure"] = 0.99 * float(iceCases.get_entry(props, "compaction.maxPressure"))
-        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), keel, BOX[0], BOX[1], thickness, 6, 15,
-                                   entries)
         try:
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
@@ -96,9 +98,9 @@ def compacted_keel(work, porosity, held=False):
 
 def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped"):
     """A reduced punch in `run`; returns its figures (summary + beamPhase)."""
-    if not iceCases.finished(run):
-        iceCases.copy_case(CASE, run)
-        props = os.path.join(run, "constant", "ridgeProperties")
+    def prepare(folder):
+        iceCases.copy_case(CASE, folder)
+        props = os.path.join(folder, "constant", "ridgeProperties")
         text = open(props).read()
         open(props, "w").write(text.replace(
             "\nconsolidatedLayer", "\nbox\n{\n    length %g;\n    width %g;\n}\n\nconsolidatedLayer" % BOX[:2], 1))
@@ -106,10 +108,10 @@ def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set
         for entry, value in (("test.settleTime", 0.05), ("ends.fixedLength", 0.1), ("ends.endSupport", support),
                              ("test.speed", speed)):
             iceCases.set_entry(props, entry, value)
-        iceCases.set_entry(os.path.join(run, "system", "controlDict"), "maxTravel", TRAVEL)
-        bonds = os.path.join(run, "constant", "freezeBondProperties")
+        iceCases.set_entry(os.path.join(folder, "system", "controlDict"), "maxTravel", TRAVEL)
+        bonds = os.path.join(folder, "constant", "freezeBondProperties")
         if freeze_modulus:
-            iceCases.set_entry(os.path.join(run, "constant", "iceProperties"), "bondFamilies.freeze.youngsModulus",
+            iceCases.set_entry(os.path.join(folder, "constant", "iceProperties"), "bondFamilies.freeze.youngsModulus",
                                f"{freeze_modulus:g}")
         if fixed_strengths:
             # the same particle-level pair on every bond whatever the modulus: direct, c_f 1
@@ -119,6 +121,9 @@ def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set
             iceCases.set_entry(bonds, "fixedSetCoeffs.sets.4h.shear", f"{fixed_strengths[1]:g}")
         if bond_set:
             iceCases.set_entry(bonds, "fixedSetCoeffs.set", bond_set)
+
+    run = iceCases.prepared_run(run, prepare, upstream=[stage])
+    if not iceCases.finished(run):
         iceCases.run_app("ridgeDEM", run, 1, ["-stage", "all"], "log.ridgeDEM")
     s = iceCases.summary(run)
     f = first_failures(run)

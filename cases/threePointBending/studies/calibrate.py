@@ -6,7 +6,7 @@ and tabulates flexural strength against the targets.
     ./calibrate.py -thickness 0.10 0.15 0.20 -set bondFamilies.ice.breakN 0.002 0.0025 \
                    [-speeds 0.1 0.05] [-quick] [-ranks 1] [-jobs 2] [-label NAME]
 
-Resumable (a run with a summary is not rerun); the tables cover every run in
+Resumable (a finished run made from the same inputs is not rerun); the tables cover every run in
 the output folder, so later invocations add rows. Writes (into -out, default ../runs/calibration; -publish copies them into studies/calibration/)
 results.csv
 and calibration/results.md: per run the values set, thickness, speed, failure
@@ -30,15 +30,18 @@ import iceCases  # noqa: E402
 def run_one(out, quick, thickness, speed, entries, ranks):
     name = "_".join([("quick" if quick else "std"), f"D{thickness}", f"v{speed}"]
                     + [f"{k.split('.')[-1]}{v}" for k, v in entries])
-    case = os.path.join(out, name)
+    args = ["-thickness", thickness, "-platenSpeed", speed] + (["-quick"] if quick else [])
+
+    def prepare(folder):
+        iceCases.copy_case(case_dir, folder)
+        ice = os.path.join(folder, "constant", "iceProperties" + (".quick" if quick else ""))
+        for key, value in entries:
+            iceCases.set_entry(ice, key, value)
+        json.dump(dict(entries), open(os.path.join(folder, "entries.json"), "w"))
+
+    case = iceCases.prepared_run(os.path.join(out, name), prepare, settings=args)
     if iceCases.finished(case):
         return case
-    iceCases.copy_case(case_dir, case)
-    ice = os.path.join(case, "constant", "iceProperties" + (".quick" if quick else ""))
-    for key, value in entries:
-        iceCases.set_entry(ice, key, value)
-    json.dump(dict(entries), open(os.path.join(case, "entries.json"), "w"))
-    args = ["-thickness", thickness, "-platenSpeed", speed] + (["-quick"] if quick else [])
     iceCases.run_app("threePointBendingDEM", case, ranks, args, "log.threePointBendingDEM")
     return case
 

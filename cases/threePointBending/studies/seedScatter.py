@@ -6,7 +6,7 @@ every thickness with several packing seeds (constant/bendingProperties packing.s
 
 A single packing is one sample of a random solid, as one laboratory beam is; the calibration
 target is the regression through thousands of beams, so what should meet it is the mean over
-packings. Resumable (a run with a summary is skipped). Runs go to runs/seedScatter_breakN<value>/
+packings. Resumable (a finished run made from the same inputs is skipped; iceCases.prepared_run). Runs go to runs/seedScatter_breakN<value>/
 unless -out says otherwise, and so do seedScatter_breakN<value>.csv (per run) and .md (per run,
 then per thickness: mean, sample standard deviation and the mean's error against the target),
 named by the case's bondFamilies.ice.breakN. -publish runs nothing and writes the two tables into
@@ -25,11 +25,13 @@ import iceCases  # noqa: E402
 
 
 def run_one(out, thickness, seed):
-    case = os.path.join(out, f"D{thickness}_seed{seed}")
+    def prepare(folder):
+        iceCases.copy_case(CASE, folder)
+        iceCases.set_entry(os.path.join(folder, "constant", "bendingProperties"), "packing.seed", seed)
+
+    case = iceCases.prepared_run(os.path.join(out, f"D{thickness}_seed{seed}"), prepare, settings=[thickness])
     if iceCases.finished(case):
         return case
-    iceCases.copy_case(CASE, case)
-    iceCases.set_entry(os.path.join(case, "constant", "bendingProperties"), "packing.seed", seed)
     iceCases.run_app("threePointBendingDEM", case, 1, ["-thickness", thickness], "log.threePointBendingDEM")
     return case
 
