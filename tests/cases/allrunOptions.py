@@ -68,8 +68,9 @@ SCRIPTS = {
     "cases/ridgeFlexure/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-jobs", "x"], "-jobs"), (["-runs", "0"], "-runs"),
          (["-runs", "1,17"], "-runs"), (["-runs", "a"], "-runs"), (["-runs", "1,,2"], "-runs"),
-         (["-runs"], "-runs")],
-        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-publish"]]),
+         (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke")],
+        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-publish"],
+         ["-water", "cfd", "-runs", "6,14", "-publish"]]),
     "cases/rubbleBeam/Allrun": (
         [(["-shape", "x"], "-shape"), (["-shape"], "-shape")],
         [[], ["-smoke"], ["-shape", "empirical", "-resume", "-np", "1"], ["-publish"]]),

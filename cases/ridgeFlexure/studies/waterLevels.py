@@ -1,0 +1,192 @@
+#!/usr/bin/python3
+"""Ridge flexure at the cfd level against the hydrostatic level (physics.md section 6): chosen
+runs of the matrix loaded in water that OpenFOAM solves (icePunchFoam, the case's cfd/ set-up),
+each beside the same run in still water (the matrix's own run, made or reused by ridgeMatrix).
+
+A cfd run is the matrix run's folder with cfd/ over it (runs/<resolution>-cfd/<run>/): the
+ridge is assembled in hydrostatic water (ridgeDEM -stage assemble), the fluid mesh is made from
+the floor to the surface where it floats (postProcessing/geometry.json), and icePunchFoam loads
+it. A finished cfd run made from the same inputs is skipped (iceCases.prepared_run); an
+unfinished one starts again (a cfd run has no checkpoint of its fluid).
+
+Per run and level: failure force and travel, buoyancy share at the peak, the fluid's own share
+beyond still-water buoyancy (drag, and pressure force less buoyancy, over the loading), broken
+bonds, failure mode (postProcessing/failureAnalysis.py), wall time and particle-steps/s, and the
+cfd run's cost against the hydrostatic one. Writes runs/waterLevels_<resolution>/
+waterLevels_<resolution>.{csv,md,png}; --publish runs nothing and copies them into results/ with
+the README's table (refusing unless every run asked for is finished at both levels).
+
+Usage: studies/waterLevels.py [--resolution default|quick] [--runs 6,14] [--jobs N] [--publish]
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import statistics
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import ridgeMatrix  # noqa: E402
+from ridgeMatrix import CASE, iceCases  # noqa: E402
+
+CFD = os.path.join(CASE, "cfd")
+os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")   # OpenFOAM's utilities and icePunchFoam
+LEVELS = ("hydrostatic", "cfd")
+
+
+def cfd_dir(run, resolution):
+    return os.path.join(CASE, "runs", resolution + "-cfd", os.path.basename(ridgeMatrix.run_dir(run, resolution)))
+
+
+def prepare_cfd(run, resolution, folder):
+    """The matrix run's folder with cfd/ over it: OpenFOAM's controlDict, the loading's moved to
+    system/loadingDict (icePunchFoam reads it there)."""
+    ridgeMatrix.prepare(run, resolution, folder)
+    os.replace(os.path.join(folder, "system", "controlDict"), os.path.join(folder, "system", "loadingDict"))
+    for sub in ("0", "constant", "system"):
+        shutil.copytree(os.path.join(CFD, sub), os.path.join(folder, sub), dirs_exist_ok=True)
+    if resolution == "quick":
+        # The quick platen (0.2 m/s) crosses a force sample in about 64 DEM steps: the force is
+        # sampled after whole coupling steps (icePunchFoam refuses a longer one).
+        iceCases.set_entry(os.path.join(folder, "constant", "couplingProperties"), "cfd.couplingInterval", 64)
+
+
+def mesh(target):
+    """The fluid mesh from the floor to the still surface where the assembled ridge floats."""
+    geometry = json.load(open(os.path.join(target, "postProcessing", "geometry.json")))
+    block = os.path.join(target, "system", "blockMeshDict")
+    for entry, key in (("surfaceZ", "waterLevel"), ("boxLength", "length"), ("boxWidth", "width")):
+        iceCases.set_entry(block, entry, repr(geometry[key]))
+    with open(os.path.join(target, "log.blockMesh"), "w") as log:
+        if subprocess.run(["blockMesh", "-case", target], stdout=log, stderr=subprocess.STDOUT).returncode:
+            raise RuntimeError(f"blockMesh failed: {target}/log.blockMesh")
+
+
+def execute_cfd(run, resolution):
+    target = iceCases.prepared_run(cfd_dir(run, resolution), lambda folder: prepare_cfd(run, resolution, folder),
+                                   upstream=ridgeMatrix.upstream_files(run, resolution))
+    if not iceCases.finished(target):
+        iceCases.run_app("ridgeDEM", target, 1, ["-stage", "assemble"], "log.ridgeDEM")
+        mesh(target)
+        iceCases.run_app(os.path.join(iceCases.BUILD, "coupling", "icePunchFoam"), target, 1, [],
+                         "log.icePunchFoam")
+    if not os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
+        subprocess.run([sys.executable, os.path.join(iceCases.TOP, "postProcessing", "failureAnalysis.py"), target],
+                       check=True, stdout=open(os.path.join(target, "log.failureAnalysis"), "w"),
+                       stderr=subprocess.STDOUT)
+    return target
+
+
+def folders(run, resolution):
+    return {"hydrostatic": ridgeMatrix.run_dir(run, resolution), "cfd": cfd_dir(run, resolution)}
+
+
+def fluid_figures(curve):
+    """Over the loading: the drag on the ice and the pressure force less still-water buoyancy
+    (mean, and the latter's standard deviation); blanks at the hydrostatic level."""
+    if "dragZ" not in curve:
+        return {"drag_mean_N": "", "dynamic_pressure_mean_N": "", "dynamic_pressure_std_N": ""}
+    dynamic = [p - b for p, b in zip(curve["pressureForceZ"], curve["buoyancy"])]
+    return {"drag_mean_N": round(statistics.fmean(curve["dragZ"]), 2),
+            "dynamic_pressure_mean_N": round(statistics.fmean(dynamic), 2),
+            "dynamic_pressure_std_N": round(statistics.pstdev(dynamic), 2)}
+
+
+def row(run, level, target):
+    s = iceCases.summary(target)
+    fa = json.load(open(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")))
+    return {"run": run["run"], "keel_m": run["keel"], "bond_set": run["set"], "CL_cm": int(run["cl_cm"]),
+            "water": level, "failure_force_kN": round(s["peak_force_N"] * 1e-3, 3),
+            "travel_at_peak_mm": round(s["travel_at_peak_m"] * 1e3, 2),
+            "buoyancy_share_at_peak_kN": round(s["buoyancy_share_at_peak_N"] * 1e-3, 3),
+            **fluid_figures(iceCases.curve(target)),
+            "broken_ice": s["broken_by_family"]["ice"], "broken_freeze": s["broken_by_family"]["freeze"],
+            "failure_mode": fa.get("ridge_failure", {}).get("mode", "n/a"),
+            "particles": s["particles"], "steps": s["steps"], "wall_s": round(s["wall_s"], 1),
+            "particle_steps_per_s": round(s["particle_steps_per_s"], -3)}
+
+
+def table(rows):
+    columns = list(rows[0])
+    csv_text = "\n".join([",".join(columns)] + [",".join(str(r[c]) for c in columns) for r in rows]) + "\n"
+    lines = ["| run (keel, set, CL) | water | failure force [kN] at travel [mm] | buoyancy share at peak [kN] "
+             "| drag, mean [N] | pressure less buoyancy: mean / std [N] | broken ice / freeze-bonds "
+             "| failure mode | wall [s] (particle-steps/s) | cfd cost |", "|---|" + "---|" * 9]
+    hydro = {r["run"]: r for r in rows if r["water"] == "hydrostatic"}
+    for r in rows:
+        fluid = "-" if r["drag_mean_N"] == "" else f"{r['drag_mean_N']:.1f}"
+        dynamic = "-" if r["drag_mean_N"] == "" else f"{r['dynamic_pressure_mean_N']:.1f} / {r['dynamic_pressure_std_N']:.1f}"
+        cost = f"{r['wall_s'] / hydro[r['run']]['wall_s']:.2f} x" if r["water"] == "cfd" and r["run"] in hydro else ""
+        lines.append(f"| {r['run']} ({r['keel_m']} m, {r['bond_set']}, {r['CL_cm']} cm) | {r['water']} "
+                     f"| {r['failure_force_kN']:.2f} at {r['travel_at_peak_mm']:.1f} | {r['buoyancy_share_at_peak_kN']:.3f} "
+                     f"| {fluid} | {dynamic} | {r['broken_ice']} / {r['broken_freeze']} | {r['failure_mode']} "
+                     f"| {r['wall_s']:.0f} ({r['particle_steps_per_s']:.3g}) | {cost} |")
+    return csv_text, "\n".join(lines) + "\n"
+
+
+def plot(runs, resolution, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(runs), figsize=(6 * len(runs), 4.5), squeeze=False)
+    for ax, run in zip(axes[0], runs):
+        for colour, (level, target) in zip(("tab:blue", "tab:red"), folders(run, resolution).items()):
+            c = iceCases.curve(target)
+            mm = [t * 1e3 for t in c["travel"]]
+            ax.plot(mm, [f * 1e-3 for f in c["force"]], color=colour, lw=1, label=f"{level}: platen force")
+            ax.plot(mm, [f * 1e-3 for f in c["buoyancyShare"]], color=colour, ls="--", lw=1.2,
+                    label=f"{level}: buoyancy share")
+        ax.set_title(f"run {run['run']}: keel {run['keel']} m, {run['set']}, CL {int(run['cl_cm'])} cm")
+        ax.set_xlabel("platen travel (mm)")
+        ax.set_ylabel("force (kN)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Ridge flexure at the hydrostatic and the cfd level ({resolution} resolution)")
+    fig.tight_layout()
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--resolution", choices=("quick", "default"), default="default")
+    parser.add_argument("--runs", type=iceCases.comma_list(iceCases.whole_number(1)), default="6,14")
+    parser.add_argument("--jobs", type=iceCases.whole_number(1), default=max(1, min(2, os.cpu_count() or 1)))
+    parser.add_argument("--publish", action="store_true",
+                        help="run nothing; copy the finished runs' table and plot into results/ and the README")
+    args = parser.parse_args()
+    matrix = {r["run"]: r for r in ridgeMatrix.matrix()}
+    unknown = [n for n in args.runs if n not in matrix]
+    if unknown:
+        parser.error(f"argument --runs: {unknown} not runs of ridgeMatrix.csv ({min(matrix)}-{max(matrix)})")
+    runs = [matrix[n] for n in args.runs]
+    if args.publish:
+        missing = [t for run in runs for t in folders(run, args.resolution).values() if not iceCases.finished(t)]
+        if missing:
+            sys.exit("waterLevels.py --publish: not finished: " + ", ".join(missing))
+    else:
+        jobs = [(ridgeMatrix.execute, run) for run in runs] + [(execute_cfd, run) for run in runs]
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            for future in [pool.submit(f, run, args.resolution) for f, run in jobs]:
+                future.result()
+    rows = [row(run, level, target) for run in runs for level, target in folders(run, args.resolution).items()]
+    csv_text, md = table(rows)
+    folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs", "waterLevels_" + args.resolution)
+    os.makedirs(folder, exist_ok=True)
+    base = os.path.join(folder, "waterLevels_" + args.resolution)
+    iceCases.write_atomically(base + ".csv", csv_text)
+    iceCases.write_atomically(base + ".md", md)
+    plot(runs, args.resolution, base + ".png")
+    if args.publish:
+        iceCases.write_readme_section(os.path.join(CASE, "README.md"), "ridge water table",
+                                      f"Published by `studies/waterLevels.py --publish` at revision "
+                                      f"`{iceCases.git_revision()}`; generated from `results/waterLevels_{args.resolution}.csv`.\n\n" + md)
+    print(md, end="")
+
+
+if __name__ == "__main__":
+    main()
