@@ -63,13 +63,19 @@ def keel_file(work):
     return os.path.join(work, "keel", "DEM", "settled.h5")
 
 
-def build_keel(work, bin_dir):
-    keel = iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), os.path.join(work, "keel"))
+def small_keel_case(keel):
+    """The small keel's rubble case (../rubbleBeam reduced) in folder `keel`."""
+    iceCases.copy_case(os.path.join(CASES, "rubbleBeam"), keel)
     props = os.path.join(keel, "constant", "rubbleProperties")
     for entry, value in (("box.length", LENGTH), ("box.width", WIDTH), ("blocks.rubbleThickness", 0.25),
                          ("settling.maxTime", 4), ("settling.minTime", 1), ("settling.maxTilt", 30)):
         iceCases.set_entry(props, entry, value)
     iceCases.uncompacted(props, 0.6)    # the keel as settled (ridgeFlexureSmall's is compacted)
+    return keel
+
+
+def build_keel(work, bin_dir):
+    keel = small_keel_case(os.path.join(work, "keel"))
     wall = iceCases.run_app(os.path.join(bin_dir, "rubbleDEM"), keel, 1, ["-stage", "settle"], "log.rubbleDEM")
     check(os.path.exists(keel_file(work)), f"small keel settled ({wall:.0f} s): {keel_file(work)}")
 

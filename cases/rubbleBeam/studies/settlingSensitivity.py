@@ -43,15 +43,17 @@ def main():
     case = os.path.dirname(HERE)
     rows = []
     for k, (name, modulus, alpha, seed) in enumerate(VARIANTS):
-        work = os.path.join(a.out, f"variant{k}")
-        done = os.path.join(work, "postProcessing", "summary.json")
-        if not os.path.exists(done):     # resumable: finished variants are kept
-            iceCases.copy_case(case, work)
-            props = os.path.join(work, "constant", "rubbleProperties")
+        def prepare(folder, modulus=modulus, alpha=alpha, seed=seed):
+            iceCases.copy_case(case, folder)
+            props = os.path.join(folder, "constant", "rubbleProperties")
             iceCases.set_entry(props, "box.length", a.length)
             iceCases.set_entry(props, "settling.youngsModulus", modulus)
             iceCases.set_entry(props, "settling.dampingAlpha", alpha)
             iceCases.set_entry(props, "blocks.seed", seed)
+
+        # resumable: a finished variant made from the same inputs and rank count is kept
+        work = iceCases.prepared_run(os.path.join(a.out, f"variant{k}"), prepare, settings=[a.np])
+        if not iceCases.finished(work):
             print(f"{name} ...", flush=True)
             iceCases.run_app("rubbleDEM", work, a.np, [], "log.rubbleDEM")
         s = iceCases.summary(work)
