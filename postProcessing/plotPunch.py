@@ -142,6 +142,14 @@ def curve_figures(run):
     for at in (50, 80, 100):
         figures[f"force_{at}mm_N"] = mean("force", at - 5, at + 5)
         figures[f"share_{at}mm_N"] = mean("buoyancyShare", at - 5, at + 5)
+    # At the cfd level, what the resolved water adds beyond still-water buoyancy over 20-100 mm:
+    # the drag on the keel, and the pressure force less that buoyancy (mean and spread).
+    inside = (mm >= 20) & (mm <= 100)
+    fluid = "dragZ" in c and inside.any()
+    figures["drag_mean_20_100mm_N"] = round(float(c["dragZ"][inside].mean()), 2) if fluid else ""
+    dynamic = c["pressureForceZ"][inside] - c["buoyancy"][inside] if fluid else None
+    figures["dynamic_pressure_mean_20_100mm_N"] = round(float(dynamic.mean()), 2) if fluid else ""
+    figures["dynamic_pressure_std_20_100mm_N"] = round(float(dynamic.std()), 2) if fluid else ""
     return figures
 
 

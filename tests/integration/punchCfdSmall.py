@@ -26,9 +26,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import ridgeSmall  # noqa: E402
-from ridgeSmall import LENGTH, WIDTH, RHO_W, G, check, iceCases  # noqa: E402
+from ridgeSmall import LENGTH, WIDTH, RHO_W, check, iceCases  # noqa: E402
+import cfdRun  # noqa: E402  (postProcessing, on the path through ridgeSmall)
 
 CFD = os.path.join(ridgeSmall.CASES, "rubblePunch", "cfd")
+CELLS = (8, 2, 5)   # the small box's water in cells of about 0.2 m
 TRAVEL = 0.005          # m: past the first break (2.8 mm); not below rampTravel (5 mm)
 # Freeze-bonds at their ultimate strength: the 4h set's first bond breaks within 0.3 mm of
 # travel, before the water's effects can be told apart; these hold for 2.8 mm (30 samples).
@@ -70,34 +72,13 @@ def hydrostatic_case(work, name, where=None):
 def cfd_case(work, name, where=None):
     """The punch with cfd/ over it, as Allrun -water cfd makes it."""
     case = hydrostatic_case(work, name, where)
-    os.rename(os.path.join(case, "system", "controlDict"), os.path.join(case, "system", "loadingDict"))
-    shutil.copytree(os.path.join(CFD, "0"), os.path.join(case, "0"))
-    for sub in ("system", "constant"):
-        for f in os.listdir(os.path.join(CFD, sub)):
-            shutil.copy(os.path.join(CFD, sub, f), os.path.join(case, sub, f))
+    cfdRun.overlay(case, CFD)
     return case
 
 
 def foam(cmd, case, log):
     with open(os.path.join(case, log), "w") as out:
         return subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, env=env()).returncode
-
-
-def mesh(case, ranks, cells=(8, 2, 5)):
-    """The water from the floor to where the assembled ridge floats, cells about 0.2 m."""
-    g = json.load(open(os.path.join(case, "postProcessing", "geometry.json")))
-    block = os.path.join(case, "system", "blockMeshDict")
-    for entry, value in (("surfaceZ", repr(g["waterLevel"])), ("boxLength", LENGTH), ("boxWidth", WIDTH),
-                         ("cellsX", cells[0]), ("cellsY", cells[1]), ("cellsZ", cells[2])):
-        iceCases.set_entry(block, entry, value)
-    if foam(["blockMesh", "-case", case], case, "log.blockMesh") != 0:
-        raise RuntimeError(f"blockMesh failed in {case}")
-    if ranks > 1:
-        decompose = os.path.join(case, "system", "decomposeParDict")
-        iceCases.set_entry(decompose, "numberOfSubdomains", ranks)
-        iceCases.set_entry(decompose, "coeffs.n", f"({ranks} 1 1)")
-        if foam(["decomposePar", "-force", "-case", case], case, "log.decomposePar") != 0:
-            raise RuntimeError(f"decomposePar failed in {case}")
 
 
 def run_cfd(dem_bin, cfd_bin, case, ranks, assembled=None):
@@ -108,7 +89,7 @@ def run_cfd(dem_bin, cfd_bin, case, ranks, assembled=None):
             shutil.copy(os.path.join(assembled, f), os.path.join(case, f))
     else:
         iceCases.run_app(os.path.join(dem_bin, "ridgeDEM"), case, 1, ["-stage", "assemble"], "log.ridgeDEM")
-    mesh(case, ranks)
+    cfdRun.mesh(case, ranks, cells=CELLS)
     args = ["-parallel"] if ranks > 1 else []
     return iceCases.run_app(os.path.join(cfd_bin, "icePunchFoam"), case, ranks, args, "log.icePunchFoam")
 
@@ -215,7 +196,7 @@ def bad_input(work, dem_bin, cfd_bin):
     expect("icePunchFoam without a mesh", mpi + [app, "-case", case], case,
            ["constant/polyMesh", "blockMesh"])
 
-    mesh(case, 1)
+    cfdRun.mesh(case, 1, cells=CELLS)
     iceCases.set_entry(os.path.join(case, "constant", "couplingProperties"), "cfd.couplingInterval", 1000)
     expect("coupling interval longer than a force sample", mpi + [app, "-case", case], case,
            ["couplingProperties", "couplingInterval", "sampleInterval"])

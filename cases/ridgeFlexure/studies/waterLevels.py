@@ -23,7 +23,6 @@ import concurrent.futures
 import json
 import os
 import statistics
-import shutil
 import subprocess
 import sys
 
@@ -31,6 +30,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import ridgeMatrix  # noqa: E402
 from ridgeMatrix import CASE, iceCases  # noqa: E402
+import cfdRun  # noqa: E402  (postProcessing, on the path through ridgeMatrix)
 
 CFD = os.path.join(CASE, "cfd")
 os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")   # OpenFOAM's utilities and icePunchFoam
@@ -45,24 +45,11 @@ def prepare_cfd(run, resolution, folder):
     """The matrix run's folder with cfd/ over it: OpenFOAM's controlDict, the loading's moved to
     system/loadingDict (icePunchFoam reads it there)."""
     ridgeMatrix.prepare(run, resolution, folder)
-    os.replace(os.path.join(folder, "system", "controlDict"), os.path.join(folder, "system", "loadingDict"))
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(CFD, sub), os.path.join(folder, sub), dirs_exist_ok=True)
+    cfdRun.overlay(folder, CFD)
     if resolution == "quick":
         # The quick platen (0.2 m/s) crosses a force sample in about 64 DEM steps: the force is
         # sampled after whole coupling steps (icePunchFoam refuses a longer one).
         iceCases.set_entry(os.path.join(folder, "constant", "couplingProperties"), "cfd.couplingInterval", 64)
-
-
-def mesh(target):
-    """The fluid mesh from the floor to the still surface where the assembled ridge floats."""
-    geometry = json.load(open(os.path.join(target, "postProcessing", "geometry.json")))
-    block = os.path.join(target, "system", "blockMeshDict")
-    for entry, key in (("surfaceZ", "waterLevel"), ("boxLength", "length"), ("boxWidth", "width")):
-        iceCases.set_entry(block, entry, repr(geometry[key]))
-    with open(os.path.join(target, "log.blockMesh"), "w") as log:
-        if subprocess.run(["blockMesh", "-case", target], stdout=log, stderr=subprocess.STDOUT).returncode:
-            raise RuntimeError(f"blockMesh failed: {target}/log.blockMesh")
 
 
 def execute_cfd(run, resolution):
@@ -70,7 +57,7 @@ def execute_cfd(run, resolution):
                                    upstream=ridgeMatrix.upstream_files(run, resolution))
     if not iceCases.finished(target):
         iceCases.run_app("ridgeDEM", target, 1, ["-stage", "assemble"], "log.ridgeDEM")
-        mesh(target)
+        cfdRun.mesh(target)
         iceCases.run_app(os.path.join(iceCases.BUILD, "coupling", "icePunchFoam"), target, 1, [],
                          "log.icePunchFoam")
     if not os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
