@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""The README's table of the published hydrostatic punches, written from results/summary_<keel>.json,
+"""The README's tables of the published punches, written from results/summary_<keel>.json,
 results/beamPhase_<keel>.json and results/punchSummary.csv (./Allrun -publish calls it), so that the
-figures a reader sees are those of the published runs.
+figures a reader sees are those of the published runs: the hydrostatic punches ("punch table"), and
+each keel at both water levels where both are published ("punch water table").
 
 usage: resultsTable.py [CASE_DIR]"""
 import csv
@@ -66,8 +67,50 @@ def table(case):
     return "\n".join(lines) + "\n"
 
 
+def water_table(case):
+    """Each keel at the hydrostatic and the cfd level, side by side, from results/punchSummary.csv;
+    None when no keel has both levels published."""
+    with open(os.path.join(case, "results", "punchSummary.csv"), newline="") as handle:
+        rows = {r["run"]: r for r in csv.DictReader(handle)}
+    keels = [k for k in KEELS if k in rows and f"{k}-cfd" in rows]
+    if not keels:
+        return None
+    names = [n for k in keels for n in (k, f"{k}-cfd")]
+    lines = ["| | " + " | ".join(f"{rows[n]['run'].split('-')[0]} {rows[n]['water']}" for n in names) + " |",
+             "|---|" + "---|" * len(names)]
+
+    def row(label, cell):
+        lines.append(f"| {label} | " + " | ".join(cell(rows[n]) for n in names) + " |")
+
+    def number(r, key):
+        return float(r[key])
+
+    row("platen speed [m/s]", lambda r: f"{number(r, 'platen_speed_m_per_s'):g}")
+    row("largest platen force", lambda r: f"{number(r, 'peak_force_N'):.0f} N at {number(r, 'travel_at_peak_mm'):.1f} mm")
+    row("buoyancy share at that sample", lambda r: f"{number(r, 'buoyancy_share_at_peak_N'):.0f} N")
+    row("mean force / buoyancy share over 20-100 mm",
+        lambda r: f"{number(r, 'mean_force_20_100mm_N'):.0f} / {number(r, 'mean_share_20_100mm_N'):.0f} N")
+    for at in (50, 80, 100):
+        row(f"force / buoyancy share at {at} mm",
+            lambda r, at=at: f"{number(r, f'force_{at}mm_N'):.0f} / {number(r, f'share_{at}mm_N'):.0f} N")
+    row("drag on the keel, mean over 20-100 mm", lambda r: f"{number(r, 'drag_mean_20_100mm_N'):.2f} N"
+        if r.get("drag_mean_20_100mm_N") else "-")
+    row("pressure force less buoyancy over 20-100 mm: mean / standard deviation",
+        lambda r: f"{number(r, 'dynamic_pressure_mean_20_100mm_N'):.1f} / {number(r, 'dynamic_pressure_std_20_100mm_N'):.1f} N"
+        if r.get("dynamic_pressure_mean_20_100mm_N") else "-")
+    row("broken freeze-bonds at 100 mm: tension / shear / twist / bending",
+        lambda r: " / ".join(r[f"broken_{m}"] for m in ("tension", "shear", "twist", "bending")))
+    row("wall time, 1 rank (particle-steps/s)",
+        lambda r: f"{minutes(number(r, 'wall_s'))} ({number(r, 'particle_steps_per_s'):.3g})")
+    return "\n".join(lines) + "\n"
+
+
 def main():
-    iceCases.write_readme_section(os.path.join(CASE, "README.md"), "punch table", table(CASE))
+    readme = os.path.join(CASE, "README.md")
+    iceCases.write_readme_section(readme, "punch table", table(CASE))
+    water = water_table(CASE)
+    if water:
+        iceCases.write_readme_section(readme, "punch water table", water)
 
 
 if __name__ == "__main__":
