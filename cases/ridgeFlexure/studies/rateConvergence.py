@@ -10,7 +10,8 @@ peak, the force averaged over +-1 mm at fixed travels, the kinetic to bond-energ
 peak, wall time; per speed with several seeds: the mean peak and its spread, which is the scale of
 the fracture's chaos against which a rate effect must be judged) and a plot of force against
 speed (.png). --publish runs nothing and writes them into the committed results/ folder
-instead; it refuses unless every speed and seed asked for is finished.
+instead, and the table into the README ("rate convergence table"); it refuses unless every speed
+and seed asked for is finished.
 
 Usage: studies/rateConvergence.py [--resolution quick|default] [--run 6] [--speeds 0.2,0.1,0.05]
                                   [--seeds 1] [--jobs N] [--publish]
@@ -148,6 +149,11 @@ def main():
     tmp = base + ".png.tmp"
     fig.savefig(tmp, format="png", dpi=120)
     os.replace(tmp, base + ".png")
+    if args.publish:
+        iceCases.write_readme_section(
+            os.path.join(CASE, "README.md"), "rate convergence table",
+            "Published by `studies/rateConvergence.py --publish` at revision `%s`; generated from `results/%s.md`.\n\n%s"
+            % (iceCases.git_revision(), os.path.basename(base), "\n".join(md)))
     print(open(base + ".md").read())
 
 
