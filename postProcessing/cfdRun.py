@@ -6,7 +6,8 @@
            system/loadingDict, where icePunchFoam reads it.
   mesh     the fluid mesh from the box floor to the still surface where the assembled ridge
            floats (postProcessing/geometry.json: waterLevel, length, width into
-           system/blockMeshDict), blockMesh, and decomposePar for more than one rank.
+           system/blockMeshDict; for a box without end walls, ends that reach past every sphere
+           of DEM/ridge.h5), blockMesh, and decomposePar for more than one rank.
 
 Used by ../cases/rubblePunch/Allrun, ../cases/ridgeFlexure/studies/waterLevels.py and the cfd
 punch tests.
@@ -39,12 +40,36 @@ def overlay(run, cfd):
         shutil.copytree(os.path.join(cfd, sub), os.path.join(run, sub), dirs_exist_ok=True)
 
 
+def particle_reach(run):
+    """The lowest and highest x that the assembled ridge's spheres reach (DEM/ridge.h5)."""
+    import h5py
+    with h5py.File(os.path.join(run, "DEM", "ridge.h5"), "r") as f:
+        x, r = (f["particles"][k][()] for k in ("x", "radius"))
+    return float((x - r).min()), float((x + r).max())
+
+
+def has_entry(path, dotted):
+    try:
+        iceCases.get_entry(path, dotted)
+        return True
+    except KeyError:
+        return False
+
+
 def mesh(run, ranks=1, cells=None):
-    """cells: (x, y, z) counts instead of the blockMeshDict's."""
+    """cells: (x, y, z) counts instead of the blockMeshDict's. A blockMeshDict with xMin/xMax
+    (a box without end walls) gets the box's ends, or the reach of the spheres beyond them;
+    one with boxLength, the box's length."""
     geometry = json.load(open(os.path.join(run, "postProcessing", "geometry.json")))
     block = os.path.join(run, "system", "blockMeshDict")
-    for entry, key in (("surfaceZ", "waterLevel"), ("boxLength", "length"), ("boxWidth", "width")):
+    for entry, key in (("surfaceZ", "waterLevel"), ("boxWidth", "width")):
         iceCases.set_entry(block, entry, repr(geometry[key]))
+    if has_entry(block, "xMin"):
+        low, high = particle_reach(run)
+        iceCases.set_entry(block, "xMin", repr(min(geometry["x0"], low)))
+        iceCases.set_entry(block, "xMax", repr(max(geometry["x0"] + geometry["length"], high)))
+    else:
+        iceCases.set_entry(block, "boxLength", repr(geometry["length"]))
     for entry, count in zip(("cellsX", "cellsY", "cellsZ"), cells or ()):
         iceCases.set_entry(block, entry, count)
     foam("blockMesh", run)
