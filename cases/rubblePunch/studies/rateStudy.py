@@ -7,6 +7,7 @@ over +-2.5 mm, mean force over 5-30 mm, at each speed) next to this script.
 usage: studies/rateStudy.py [-work WORK] [-bin BIN_DIR] [-speeds V ...]
        (default WORK /tmp/rubblePunchRate, BIN_DIR build/demModels)"""
 import argparse
+import csv
 import os
 import sys
 
@@ -23,13 +24,30 @@ parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.R
 parser.add_argument("-work", default=os.path.join(HERE, "..", "runs", "rateStudy"),
                     help="the runs and rateStudy.csv (default ../runs/rateStudy)")
 parser.add_argument("-publish", action="store_true",
-                    help="run nothing; copy -work's rateStudy.csv into the committed studies/")
+                    help="run nothing; copy -work's rateStudy.csv into the committed studies/ and its table into the README")
 parser.add_argument("-bin", default=os.path.join(TOP, "build", "demModels"))
 parser.add_argument("-speeds", type=iceCases.positive_number, nargs="+",
                     default=[0.05, 0.025, 0.0125, 0.005])
 args = parser.parse_args()
+
+
+def readme_table(path):
+    """The README's table of a rateStudy.csv: forces in N, wall time in s."""
+    rows = list(csv.DictReader(open(path)))
+    lines = ["| platen speed [m/s] | largest force | force at 10 mm | 20 mm | 30 mm | mean over 5-30 mm | wall [s] |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append("| %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f |" % (
+            r["speed_m_per_s"], *(float(r[k]) for k in ("max_force_N", "force_10mm_N", "force_20mm_N",
+                                                        "force_30mm_N", "mean_force_5_30mm_N", "wall_s"))))
+    return ("Published by `studies/rateStudy.py -publish` at revision `%s`; generated from `studies/rateStudy.csv`.\n\n"
+            % iceCases.git_revision()) + "\n".join(lines) + "\n"
+
+
 if args.publish:
     iceCases.publish_files([os.path.join(args.work, "rateStudy.csv")], HERE)
+    iceCases.write_readme_section(os.path.join(HERE, "..", "README.md"), "rate study table",
+                                  readme_table(os.path.join(HERE, "rateStudy.csv")))
     sys.exit(0)
 work = args.work
 bin_dir = os.path.abspath(args.bin)
