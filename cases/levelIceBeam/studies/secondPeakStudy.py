@@ -66,11 +66,17 @@ def main():
     parser.add_argument("-variants", nargs="+", default=list(VARIANTS))
     parser.add_argument("-out", default=os.path.join(here, "..", "runs", "secondPeakStudy"))
     parser.add_argument("-publish", action="store_true",
-                        help="run nothing; copy the results in -out into the committed studies/secondPeakStudy/")
+                        help="run nothing; copy the results in -out into the committed studies/secondPeakStudy/ "
+                             "and the table into the README")
     args = parser.parse_args()
     if args.publish:
         iceCases.publish_files([os.path.join(args.out, f) for f in ("results.csv", "results.md")],
                                os.path.join(here, "secondPeakStudy"))
+        iceCases.write_readme_section(
+            os.path.join(here, "..", "README.md"), "second peak table",
+            "Published by `studies/secondPeakStudy.py -publish` at revision `%s`; generated from "
+            "`studies/secondPeakStudy/results.md`.\n\n%s" % (
+                iceCases.git_revision(), open(os.path.join(here, "secondPeakStudy", "results.md")).read()))
         return
     unknown = [v for v in args.variants if v not in VARIANTS]
     if unknown:
