@@ -12,8 +12,9 @@ Writes to CASE/postProcessing/, each file atomically:
                    moment_*.png) at half load before the peak, the peak and half load after it;
   punchSummary.csv one row per run: water level, peak force, buoyancy share at the peak, mean
                    force and buoyancy share over 20-100 mm, force and share (means over +-5 mm)
-                   at 50, 80 and 100 mm, broken bonds by mode and family, wall time,
-                   particle-steps/s.
+                   at 50, 80 and 100 mm, at the cfd level the drag and the pressure force less
+                   buoyancy over 20-100 mm (mean; standard deviation), broken bonds by mode and
+                   family, wall time, particle-steps/s.
 
 usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd]"""
 import argparse
