@@ -5,8 +5,9 @@ Each run is a copy of the ridge case (constant/, system/, DEM/) under
 runs/<resolution>/, with its keel, consolidated-layer thickness and
 freeze-bond set set in its dictionaries. Runs go in parallel (one rank each,
 --jobs at a time), a finished run (summary.json written) is skipped, and a
-killed one continues from its checkpoint, so the command can simply be run
-again. Each run is then classified by postProcessing/failureAnalysis.py, and
+killed one continues from its checkpoint, both only when the folder was made
+from the same inputs (madeFrom; a folder of other inputs is made again), so
+the command can simply be run again. Each run is then classified by postProcessing/failureAnalysis.py, and
 the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
 (.png) of every finished run in runs/<resolution>/ are written there.
 
@@ -34,11 +35,9 @@ Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--r
 import argparse
 import concurrent.futures
 import csv
-import hashlib
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 import threading
@@ -101,38 +100,9 @@ def upstream_files(run, resolution):
     return [] if run.get("alone") else [iceCases.keel_file(keel_case(run, resolution))]
 
 
-def made_from(run, resolution):
-    """What a run folder is made from: the run's row, and the content of the case's inputs (with
-    what they include) and of its keel. A folder made from anything else is stale: made again, never reused or skipped."""
-    # A layer alone has no freeze-bonds: the set it carries (the first run's) is no input of it.
-    row = {k: v for k, v in run.items() if not (run.get("alone") and k == "set")}
-    digest = hashlib.sha256(json.dumps([row, resolution], sort_keys=True).encode())
-    files = upstream_files(run, resolution)
-    # The case's dictionaries and what they include of ../common (not its other calibrations).
-    files += iceCases.input_files([os.path.join(CASE, "constant"), os.path.join(CASE, "system"),
-                                   os.path.join(CASE, "DEM", "in.ridge")])
-    for path in files:
-        if os.path.isfile(path):
-            digest.update(path.encode())
-            with open(path, "rb") as f:
-                digest.update(f.read())
-    return digest.hexdigest()[:16]
-
-
-def prepare(run, resolution, target=None):
-    """The run's case folder (default run_dir), made from the ridge case unless it exists and was
-    made from the same inputs (made_from, recorded in its madeFrom file)."""
-    target = target or run_dir(run, resolution)
-    stamp = os.path.join(target, "madeFrom")
-    fingerprint = made_from(run, resolution)
-    if os.path.exists(os.path.join(target, "constant", "ridgeProperties")):
-        if os.path.exists(stamp) and open(stamp).read().strip() == fingerprint:
-            return target
-        print("ridgeMatrix: %s was made from other inputs (the case's dictionaries or the keel changed): "
-              "run again" % target, flush=True)
-        shutil.rmtree(target)
+def prepare(run, resolution, target):
+    """The run's case folder `target`: the ridge case with the run's keel, layer and bond set."""
     iceCases.copy_case(CASE, target)
-    iceCases.write_atomically(stamp, fingerprint + "\n")
     props = os.path.join(target, "constant", "ridgeProperties")
     if run.get("alone"):
         iceCases.set_entry(props, "keel.settledRubble", "none")
@@ -153,9 +123,17 @@ def prepare(run, resolution, target=None):
     return target
 
 
+def prepared(run, resolution):
+    """The run's folder (run_dir), reused, finished or to resume, only when it was made from the same
+    inputs: the case's dictionaries with what they include, the run's entries and its keel
+    (iceCases.prepared_run, the madeFrom file); made again from anything else."""
+    return iceCases.prepared_run(run_dir(run, resolution), lambda folder: prepare(run, resolution, folder),
+                                 upstream=upstream_files(run, resolution))
+
+
 def execute(run, resolution):
     """Runs (or resumes) one run and its failure analysis; returns its wall time or None if it was done."""
-    target = prepare(run, resolution)
+    target = prepared(run, resolution)
     if analysed(run, resolution):
         return None
     start = time.time()
