@@ -7,8 +7,8 @@ freeze-bond set set in its dictionaries. Runs go in parallel (one rank each,
 --jobs at a time), a finished run (summary.json written) is skipped, and a
 killed one continues from its checkpoint, both only when the folder was made
 from the same inputs (madeFrom; a folder of other inputs is made again), so
-the command can simply be run again. Each run is then classified by postProcessing/failureAnalysis.py, and
-the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
+the command can simply be run again. Each run is then classified by
+postProcessing/failureAnalysis.py, and the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
 (.png) of every finished run in runs/<resolution>/ are written there.
 
 A run the application stopped (e.g. a particle past maxParticleSpeed: a blow-up)
