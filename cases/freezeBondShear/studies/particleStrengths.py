@@ -391,6 +391,14 @@ def main():
     sens = {k: f.result() for k, f in sens.items()}
     runs += list(sweep.values()) + list(sens.values())
 
+    broke_early = sorted(r["label"] for (test, _, _), r in sweep.items()
+                         if test == "tension" and succeeded(r) and r["effective_Pa"] <= 0)
+    if broke_early:
+        sys.exit(f"particleStrengths: tension specimens {', '.join(broke_early)} broke before the pull "
+                 f"(strength 0): their freeze-bonds do not survive the release of {pressure['tension']:.0f} Pa "
+                 f"of applied confinement ({target:.0f} Pa on the bond area); use --confinement for a lower "
+                 f"bond-area confinement, or --sweep-strengths without the weakest strengths")
+
     relation = {}
     for rho in ratios:
         shear = [s for s in a.sweep_strengths if succeeded(sweep[("shear", rho, s)])]
