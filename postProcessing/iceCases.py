@@ -374,6 +374,14 @@ def write_readme_section(readme, name, text):
     print(f"{readme}: {name} written from the published results")
 
 
+def write_readme_table(readme, name, command, source, table, dated=False):
+    """write_readme_section with the header every published table carries: the command that
+    published it, the revision (and, dated, when), and the file the table is generated from."""
+    when = time.strftime(" on %Y-%m-%d %H:%M UTC", time.gmtime()) if dated else ""
+    write_readme_section(readme, name, f"Published by `{command}` at revision `{git_revision()}`{when}; "
+                                       f"generated from `{source}`.\n\n{table}")
+
+
 def publish_files(sources, folder, names=None):
     """A study's --publish: copies its output files (text or images) into the committed folder,
     each atomically (under names[i] when given, else its own name); exits naming the missing

@@ -72,11 +72,9 @@ def main():
     if args.publish:
         iceCases.publish_files([os.path.join(args.out, f) for f in ("results.csv", "results.md")],
                                os.path.join(here, "secondPeakStudy"))
-        iceCases.write_readme_section(
-            os.path.join(here, "..", "README.md"), "second peak table",
-            "Published by `studies/secondPeakStudy.py -publish` at revision `%s`; generated from "
-            "`studies/secondPeakStudy/results.md`.\n\n%s" % (
-                iceCases.git_revision(), open(os.path.join(here, "secondPeakStudy", "results.md")).read()))
+        iceCases.write_readme_table(os.path.join(here, "..", "README.md"), "second peak table",
+                                    "studies/secondPeakStudy.py -publish", "studies/secondPeakStudy/results.md",
+                                    open(os.path.join(here, "secondPeakStudy", "results.md")).read())
         return
     unknown = [v for v in args.variants if v not in VARIANTS]
     if unknown:

@@ -150,10 +150,9 @@ def main():
     fig.savefig(tmp, format="png", dpi=120)
     os.replace(tmp, base + ".png")
     if args.publish:
-        iceCases.write_readme_section(
-            os.path.join(CASE, "README.md"), "rate convergence table",
-            "Published by `studies/rateConvergence.py --publish` at revision `%s`; generated from `results/%s.md`.\n\n%s"
-            % (iceCases.git_revision(), os.path.basename(base), "\n".join(md)))
+        iceCases.write_readme_table(os.path.join(CASE, "README.md"), "rate convergence table",
+                                    "studies/rateConvergence.py --publish", "results/%s.md" % os.path.basename(base),
+                                    "\n".join(md))
     print(open(base + ".md").read())
 
 

@@ -43,7 +43,6 @@ import argparse
 import concurrent.futures
 import os
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.dirname(HERE)
@@ -269,11 +268,8 @@ def main():
         write([row(s, c) for s, c in everything], os.path.join(CASE, "results"))
         table = open(os.path.join(CASE, "results", "supportStudy.md")).read()
         table = table[table.index("| subject"):]
-        iceCases.write_readme_section(
-            os.path.join(CASE, "README.md"), "supportStudy table",
-            "Published by `studies/supportStudy.py --publish` at revision `%s` on %s; generated from "
-            "`results/supportStudy.md`.\n\n%s" % (iceCases.git_revision(), time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-                                                   table))
+        iceCases.write_readme_table(os.path.join(CASE, "README.md"), "supportStudy table",
+                                    "studies/supportStudy.py --publish", "results/supportStudy.md", table, dated=True)
         print("published results/supportStudy.{csv,md,png} and the README's table")
         return
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:

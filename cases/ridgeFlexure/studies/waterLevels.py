@@ -169,9 +169,8 @@ def main():
     iceCases.write_atomically(base + ".md", md)
     plot(runs, args.resolution, base + ".png")
     if args.publish:
-        iceCases.write_readme_section(os.path.join(CASE, "README.md"), "ridge water table",
-                                      f"Published by `studies/waterLevels.py --publish` at revision "
-                                      f"`{iceCases.git_revision()}`; generated from `results/waterLevels_{args.resolution}.csv`.\n\n" + md)
+        iceCases.write_readme_table(os.path.join(CASE, "README.md"), "ridge water table",
+                                    "studies/waterLevels.py --publish", f"results/waterLevels_{args.resolution}.csv", md)
     print(md, end="")
 
 

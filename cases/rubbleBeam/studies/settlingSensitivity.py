@@ -42,11 +42,9 @@ def main():
     if a.publish:
         iceCases.publish_files([os.path.join(a.out, f) for f in ("settlingSensitivity.csv", "settlingSensitivity.md")],
                                HERE)
-        iceCases.write_readme_section(
-            os.path.join(HERE, "..", "README.md"), "settling invariance table",
-            "Published by `studies/settlingSensitivity.py --publish` at revision `%s`; generated from "
-            "`studies/settlingSensitivity.md`.\n\n%s" % (
-                iceCases.git_revision(), open(os.path.join(HERE, "settlingSensitivity.md")).read()))
+        iceCases.write_readme_table(os.path.join(HERE, "..", "README.md"), "settling invariance table",
+                                    "studies/settlingSensitivity.py --publish", "studies/settlingSensitivity.md",
+                                    open(os.path.join(HERE, "settlingSensitivity.md")).read())
         return
     case = os.path.dirname(HERE)
     rows = []

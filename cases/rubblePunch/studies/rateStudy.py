@@ -40,14 +40,14 @@ def readme_table(path):
         lines.append("| %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f |" % (
             r["speed_m_per_s"], *(float(r[k]) for k in ("max_force_N", "force_10mm_N", "force_20mm_N",
                                                         "force_30mm_N", "mean_force_5_30mm_N", "wall_s"))))
-    return ("Published by `studies/rateStudy.py -publish` at revision `%s`; generated from `studies/rateStudy.csv`.\n\n"
-            % iceCases.git_revision()) + "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n"
 
 
 if args.publish:
     iceCases.publish_files([os.path.join(args.work, "rateStudy.csv")], HERE)
-    iceCases.write_readme_section(os.path.join(HERE, "..", "README.md"), "rate study table",
-                                  readme_table(os.path.join(HERE, "rateStudy.csv")))
+    iceCases.write_readme_table(os.path.join(HERE, "..", "README.md"), "rate study table",
+                                "studies/rateStudy.py -publish", "studies/rateStudy.csv",
+                                readme_table(os.path.join(HERE, "rateStudy.csv")))
     sys.exit(0)
 work = args.work
 bin_dir = os.path.abspath(args.bin)
