@@ -13,6 +13,7 @@ import json
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import threading
@@ -331,6 +332,22 @@ def curve(case):
     with open(os.path.join(case, "postProcessing", "platenForce.csv")) as f:
         rows = list(csv.DictReader(f))
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def fluid_force_figures(curve, window_mm=None):
+    """At the cfd level, what the resolved water adds beyond still-water buoyancy, over the
+    loading or a travel window (lo, hi) in mm of a force curve (columns as iceCases.curve gives
+    them): the mean drag on the ice, and the pressure force less that buoyancy (mean, standard
+    deviation). None at another level (no dragZ column) or for an empty window."""
+    if "dragZ" not in curve:
+        return None
+    rows = [k for k, t in enumerate(curve["travel"]) if window_mm is None or window_mm[0] <= t * 1e3 <= window_mm[1]]
+    if not rows:
+        return None
+    dynamic = [curve["pressureForceZ"][k] - curve["buoyancy"][k] for k in rows]
+    return {"drag_mean_N": statistics.fmean(curve["dragZ"][k] for k in rows),
+            "dynamic_pressure_mean_N": statistics.fmean(dynamic),
+            "dynamic_pressure_std_N": statistics.pstdev(dynamic)}
 
 
 def residual_strength(case, window=0.03):

@@ -20,7 +20,6 @@ usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd]"""
 import argparse
 import csv
 import io
-import json
 import os
 import sys
 
@@ -33,7 +32,7 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from breakageRecord import MODES, read_breakage  # noqa: E402
-from iceCases import finished, summary, write_atomically  # noqa: E402
+from iceCases import finished, fluid_force_figures, summary, write_atomically  # noqa: E402
 from plotForceDisplacement import save_atomically  # noqa: E402
 
 MOMENTS = ("halfLoadBeforePeak", "peak", "halfLoadAfterPeak")
@@ -143,14 +142,10 @@ def curve_figures(run):
     for at in (50, 80, 100):
         figures[f"force_{at}mm_N"] = mean("force", at - 5, at + 5)
         figures[f"share_{at}mm_N"] = mean("buoyancyShare", at - 5, at + 5)
-    # At the cfd level, what the resolved water adds beyond still-water buoyancy over 20-100 mm:
-    # the drag on the keel, and the pressure force less that buoyancy (mean and spread).
-    inside = (mm >= 20) & (mm <= 100)
-    fluid = "dragZ" in c and inside.any()
-    figures["drag_mean_20_100mm_N"] = round(float(c["dragZ"][inside].mean()), 2) if fluid else ""
-    dynamic = c["pressureForceZ"][inside] - c["buoyancy"][inside] if fluid else None
-    figures["dynamic_pressure_mean_20_100mm_N"] = round(float(dynamic.mean()), 2) if fluid else ""
-    figures["dynamic_pressure_std_20_100mm_N"] = round(float(dynamic.std()), 2) if fluid else ""
+    # At the cfd level, what the resolved water adds beyond still-water buoyancy over 20-100 mm.
+    fluid = fluid_force_figures(c, (20, 100))
+    for name in ("drag_mean", "dynamic_pressure_mean", "dynamic_pressure_std"):
+        figures[f"{name}_20_100mm_N"] = round(fluid[f"{name}_N"], 2) if fluid else ""
     return figures
 
 

@@ -22,7 +22,6 @@ import argparse
 import concurrent.futures
 import json
 import os
-import statistics
 import subprocess
 import sys
 
@@ -71,15 +70,11 @@ def folders(run, resolution):
     return {"hydrostatic": ridgeMatrix.run_dir(run, resolution), "cfd": cfd_dir(run, resolution)}
 
 
-def fluid_figures(curve):
-    """Over the loading: the drag on the ice and the pressure force less still-water buoyancy
-    (mean, and the latter's standard deviation); blanks at the hydrostatic level."""
-    if "dragZ" not in curve:
-        return {"drag_mean_N": "", "dynamic_pressure_mean_N": "", "dynamic_pressure_std_N": ""}
-    dynamic = [p - b for p, b in zip(curve["pressureForceZ"], curve["buoyancy"])]
-    return {"drag_mean_N": round(statistics.fmean(curve["dragZ"]), 2),
-            "dynamic_pressure_mean_N": round(statistics.fmean(dynamic), 2),
-            "dynamic_pressure_std_N": round(statistics.pstdev(dynamic), 2)}
+def fluid_columns(fluid):
+    """The table's columns of iceCases.fluid_force_figures over the loading; blanks at the
+    hydrostatic level."""
+    names = ("drag_mean_N", "dynamic_pressure_mean_N", "dynamic_pressure_std_N")
+    return {name: round(fluid[name], 2) if fluid else "" for name in names}
 
 
 def row(run, level, target):
@@ -89,7 +84,7 @@ def row(run, level, target):
             "water": level, "failure_force_kN": round(s["peak_force_N"] * 1e-3, 3),
             "travel_at_peak_mm": round(s["travel_at_peak_m"] * 1e3, 2),
             "buoyancy_share_at_peak_kN": round(s["buoyancy_share_at_peak_N"] * 1e-3, 3),
-            **fluid_figures(iceCases.curve(target)),
+            **fluid_columns(iceCases.fluid_force_figures(iceCases.curve(target))),
             "broken_ice": s["broken_by_family"]["ice"], "broken_freeze": s["broken_by_family"]["freeze"],
             "failure_mode": fa.get("ridge_failure", {}).get("mode", "n/a"),
             "particles": s["particles"], "steps": s["steps"], "wall_s": round(s["wall_s"], 1),
