@@ -1056,7 +1056,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     const CsvWriter& curve = loading_->curve();
     const BreakageRecord& breaks = loading_->breakage();
     const std::size_t rows = curve.nRows();
-    double peak = -HUGE_VAL, travelAtPeak = 0.0, shareAtPeak = 0.0;
+    double peak = -HUGE_VAL, travelAtPeak = 0.0, shareAtPeak = 0.0, reactionAtPeak = 0.0;
     const double startForce = rows > 0 ? curve.row(0)[PlatenLoading::forceColumn] : 0.0;
     if (rows > 0)
     {
@@ -1064,6 +1064,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
         peak = row[PlatenLoading::forceColumn];
         travelAtPeak = row[PlatenLoading::travelColumn];
         shareAtPeak = row[curve.columnIndex("buoyancyShare")];
+        reactionAtPeak = row[curve.columnIndex("supportReaction")];
     }
     // Freeze-bonds broken in tension, and those between layer and keel.
     std::size_t freezeBroken = 0, freezeTension = 0, interfaceBroken = 0;
@@ -1095,12 +1096,6 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["water_level_m"] = g.waterLevel;
     j["freeze_bond_set"] = freezeBondProperties_.summary();
     j["end_support"] = settings_.endSupport->summary();
-    const std::size_t reactionColumn = curve.columnIndex("supportReaction");
-    double reactionAtPeak = 0.0;
-    for (std::size_t k = 0; k < rows; ++k)
-    {
-        if (curve.row(k)[PlatenLoading::travelColumn] == travelAtPeak) reactionAtPeak = curve.row(k)[reactionColumn];
-    }
     j["support_reaction_at_peak_N"] = reactionAtPeak;
     // The freeze-bonds of DEM/ridge.h5: the particle-level strengths they break at
     // (means), the effective ones the set asks for (c_f times the real strengths,
