@@ -68,6 +68,18 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
         .choice("-shape", {"cuboid", "empirical"}, "block shape instead of blocks.shape", shapeOverride)
         .flag("-resume", "settle: continue from the last checkpoint", s.resume)
         .parse(argc, argv);
+    RubbleSettings fromCase = readCase(s.caseDir, s.stage, shapeOverride);
+    fromCase.resume = s.resume;
+    return fromCase;
+}
+
+
+RubbleSettings RubbleSettings::readCase(const std::string& caseDir, const std::string& stage,
+                                        const std::string& shapeOverride)
+{
+    RubbleSettings s;
+    s.caseDir = caseDir;
+    s.stage = stage;
     const std::string file = s.caseDir + "/constant/rubbleProperties";
     const Dictionary d = Dictionary::readFile(file);
     d.checkKeys({"box", "blocks", "settling", "compaction", "ends", "inertiaScaling"});
@@ -192,10 +204,11 @@ RubbleSettings RubbleSettings::read(int argc, char** argv)
 }
 
 
-RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
+RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings, const ExternalWater* externalWater)
 :
-    context_(comm, settings.caseDir, "rubbleDEM"),
-    settings_(settings)
+    context_(comm, settings.caseDir, externalWater ? "iceRubbleFoam" : "rubbleDEM"),
+    settings_(settings),
+    externalWater_(externalWater)
 {
     ice_ = IceProperties::read(context_.path("constant/iceProperties"));
     requireFreezeBondStrengthsPerBond(ice_, context_.path("constant/iceProperties"));
@@ -207,10 +220,30 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings)
             "interface is for laboratory specimens; rubble needs given or heatBalance");
     }
     water_ = WaterProperties::readCase(settings_.caseDir);
-    if (water_.level == WaterLevel::cfd)
+    const std::string coupling = context_.path("constant/couplingProperties");
+    if (externalWater_ && (water_.level != WaterLevel::cfd || settings_.stage != "settle"))
     {
-        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
-            "cfd is not available to rubbleDEM yet; allowed here: none hydrostatic");
+        throw InputError(coupling, "waterLevel", "'" + toString(water_.level) + "', stage " + settings_.stage
+            + ": iceRubbleFoam settles the rubble at the cfd level (stage settle, waterLevel cfd); "
+            "the other stages and levels run in rubbleDEM");
+    }
+    if (externalWater_ && settings_.resume)
+    {
+        throw InputError("command line", "-resume", "a settling checkpoint holds the DEM only, not the "
+            + externalWater_->name + " water: a settling at that level starts again");
+    }
+    const bool settles = settings_.stage == "settle" || settings_.stage == "all";
+    if (!externalWater_ && water_.level == WaterLevel::cfd && settles)
+    {
+        throw InputError(coupling, "waterLevel", "cfd: rubbleDEM settles in still (hydrostatic) water; the "
+            "settling at the cfd level runs in iceRubbleFoam (cases/rubbleBeam: ./Allrun -water cfd), and "
+            "rubbleDEM then compacts and bonds it (-stage compact, -stage bond)");
+    }
+    if (water_.level == WaterLevel::cfd && water_.hydrostatic.surfaceLevel <= 0.0)
+    {
+        throw InputError(coupling, "hydrostatic", "at the cfd level the blocks are rained towards the still "
+            "surface, and compacted and bonded in still water: needs hydrostatic { surfaceLevel; rho; mu; } "
+            "(the fluid mesh ends at surfaceLevel)");
     }
     // Raining only has to produce the settled geometry: softer contacts and
     // bonds (a longer time step), unbreakable blocks and more damping.
@@ -331,8 +364,13 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const st
     }
 
     waterForces_.reset();
-    if (water_.level == WaterLevel::hydrostatic)
+    if (externalWater_)
     {
+        externalWater_->defineForceFix(*lmp_, water_.hydrostatic.surfaceLevel);
+    }
+    else if (water_.level != WaterLevel::none)
+    {
+        // hydrostatic, or the stages after a settling at the cfd level
         waterForces_ = std::make_unique<WaterForces>(*lmp_, HydrostaticWater(water_.hydrostatic));
         waterForces_->defineForceFix();
     }
@@ -375,8 +413,15 @@ void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const st
 
 double RubbleScene::advance(long chunk, bool& first, double& t, const std::string& what)
 {
-    // The first run after a set-up change makes its own set-up, as a resumed run's first does.
-    lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+    if (externalWater_)
+    {
+        externalWater_->advance(chunk);     // the settling's chunks are whole coupling intervals
+    }
+    else
+    {
+        // The first run after a set-up change makes its own set-up, as a resumed run's first does.
+        lmp_->command("run " + std::to_string(chunk) + (first ? " post no" : " pre no post no"));
+    }
     first = false;
     steps_ += chunk;
     t += chunk*dt_;
@@ -445,6 +490,15 @@ Provenance RubbleScene::readSettlingInputs() const
         p.addDictionaryFile("constant/g", context_.path("constant/g"));
     }
     p.addFileContent("DEM/in.rubbleBeam", context_.path("DEM/in.rubbleBeam"));
+    if (water_.level == WaterLevel::cfd)
+    {
+        // The water that OpenFOAM solves while the blocks settle (iceRubbleFoam).
+        for (const char* file : {"constant/transportProperties", "0/U", "0/p_rgh", "system/controlDict",
+                                 "system/blockMeshDict", "system/fvSchemes", "system/fvSolution"})
+        {
+            p.addFileContent(file, context_.path(file));
+        }
+    }
     return p;
 }
 
@@ -597,8 +651,16 @@ void RubbleScene::settle()
          << settings_.kineticEnergyThreshold << " J (after " << settings_.minTime << " s) or at " << settings_.maxTime << " s";
     context_.log(head.str());
 
-    const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    if (externalWater_)
+    {
+        const long k = externalWater_->stepsPerAdvance;
+        chunk = (chunk + k - 1)/k*k;
+        context_.log("No settling checkpoints at the " + externalWater_->name + " level (they would hold the "
+            "DEM only): a killed settling starts again");
+    }
     const auto start = std::chrono::steady_clock::now();
+    const long startStep = steps_;
     double nextCheckpoint = t + settings_.checkpointInterval;
     double nextLog = t;
     int quietChecks = 0;
@@ -607,6 +669,16 @@ void RubbleScene::settle()
     while (t < settings_.maxTime)
     {
         ke = advance(chunk, first, t, "settling");
+        if (externalWater_)
+        {
+            // The resolved pressure on the ice jitters from step to step (coupling/README.md,
+            // fluid-fraction jumps): the summary gives the water's force over the last second.
+            waterForceSamples_.push_back(externalWater_->values());
+            if (double(waterForceSamples_.size())*double(chunk)*dt_ > 1.0 + 1e-9)
+            {
+                waterForceSamples_.pop_front();
+            }
+        }
         quietChecks = (ke < settings_.kineticEnergyThreshold && t >= settings_.minTime) ? quietChecks + 1 : 0;
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (t >= nextLog || quietChecks >= 2)
@@ -619,7 +691,7 @@ void RubbleScene::settle()
             context_.log(line.str());
             nextLog = t + 1.0;
         }
-        if (t >= nextCheckpoint)
+        if (t >= nextCheckpoint && !externalWater_)
         {
             writeSettlingCheckpoint(t);
             first = true;       // the next run makes its set-up, as a resumed run's first does
@@ -631,6 +703,7 @@ void RubbleScene::settle()
         }
     }
     settleWall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    settleSteps_ = steps_ - startStep;
     layer_ = measureLayer(t, ke, quietChecks >= 2);
     std::ostringstream msg;
     msg << (layer_.atRest ? "Settled" : "NOT at rest") << " after " << t << " s (" << formatDuration(settleWall_)
@@ -645,6 +718,64 @@ void RubbleScene::settle()
     {
         state.write(context_.path("DEM/settled.h5"));
     }
+    writeSettlingSummary();
+}
+
+
+void RubbleScene::writeSettlingSummary() const
+{
+    const LAMMPS_NS::Atom& atom = *lmp_->engine().atom;
+    double mass = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i) mass += atom.rmass[i];
+    const double weight = sumOverRanks(context_.comm(), mass)*water_.gravity.norm();
+    if (context_.rank() != 0)
+    {
+        return;
+    }
+    const double particleSteps = double(blockOfTag_.size())*double(settleSteps_);   // of this run
+    Json j;
+    j["water"] = externalWater_ ? externalWater_->name : toString(water_.level);
+    j["water_level_m"] = water_.hydrostatic.surfaceLevel;
+    j["settled_time_s"] = layer_.time;
+    j["at_rest"] = layer_.atRest;
+    j["kinetic_energy_per_particle_J"] = layer_.kineticEnergyPerParticle;
+    j["layer_bottom_m"] = layer_.bottom;
+    j["layer_top_m"] = layer_.top;
+    j["thickness_m"] = layer_.thickness;
+    j["porosity"] = layer_.porosity;
+    j["sphere_porosity"] = layer_.spherePorosity;
+    j["ice_volume_above_water_fraction"] = layer_.volumeAboveWater;
+    j["freeboard_m"] = layer_.freeboard;
+    j["weight_N"] = weight;
+    // The water's force on the ice (cfd: summed over the particles), mean and standard
+    // deviation of the samples after each check interval over the last second.
+    if (externalWater_ && !waterForceSamples_.empty())
+    {
+        const double n = double(waterForceSamples_.size());
+        j["water_force_samples"] = long(waterForceSamples_.size());
+        for (std::size_t k = 0; k < externalWater_->columns.size(); ++k)
+        {
+            double sum = 0.0, squares = 0.0;
+            for (const std::vector<double>& sample : waterForceSamples_)
+            {
+                sum += sample.at(k);
+                squares += sample.at(k)*sample.at(k);
+            }
+            const double mean = sum/n;
+            j[externalWater_->columns[k] + "_N"] = mean;
+            j[externalWater_->columns[k] + "_std_N"] = std::sqrt(std::max(0.0, squares/n - mean*mean));
+        }
+    }
+    j["particles"] = long(blockOfTag_.size());
+    j["steps"] = steps_;
+    j["dt"] = dt_;
+    j["ranks"] = long(context_.ranks());
+    j["wall_s"] = settleWall_;      // of this run (a resumed one: since the resume)
+    j["wall_per_simulated_s"] = settleWall_/std::max(double(settleSteps_)*dt_, 1e-12);
+    j["particle_steps_per_s"] = particleSteps/std::max(settleWall_, 1e-9);
+    j["inputs_fingerprint"] = settlingInputs_.fingerprint();
+    std::filesystem::create_directories(context_.path("postProcessing"));
+    writeFileAtomically(context_.path("postProcessing/settling.json"), jsonText(j));
 }
 
 
@@ -792,7 +923,14 @@ void RubbleScene::release()
     lmp_->command("group released type " + std::to_string(mobileType));
     lmp_->command("fix integrate released nve/sphere");
     plates_->withdraw();
-    const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
+    if (externalWater_)
+    {
+        const long k = externalWater_->stepsPerAdvance;
+        chunk = (chunk + k - 1)/k*k;
+        context_.log("No settling checkpoints at the " + externalWater_->name + " level (they would hold the "
+            "DEM only): a killed settling starts again");
+    }
     const double minTime = std::min(0.2, settings_.releaseTime);
     double t = 0.0, ke = 0.0;
     int quietChecks = 0;
@@ -1038,7 +1176,7 @@ void RubbleScene::startFromCompacted(const SavedRubble& compacted)
 void RubbleScene::run()
 {
     const auto start = std::chrono::steady_clock::now();
-    context_.log("rubbleDEM: rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
+    context_.log(std::string(externalWater_ ? "iceRubbleFoam" : "rubbleDEM") + ": rubble beam, case " + settings_.caseDir + ", stage " + settings_.stage + ", "
         + std::to_string(context_.ranks()) + " rank(s)");
     const bool plates = settings_.compaction == CompactionMethod::plates;
     const bool bonding = settings_.stage == "bond" || settings_.stage == "all";

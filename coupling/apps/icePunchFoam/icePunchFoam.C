@@ -68,37 +68,16 @@ int main(int argc, char *argv[])
     argList::noFunctionObjects();
     #include "setRootCaseLists.H"
     #include "createTime.H"
-    {
-        const fileName meshDir(runTime.path()/runTime.constant()/polyMesh::meshSubDir);
-        if (!isFile(meshDir/"points") && !isFile(meshDir/"points.gz"))
-        {
-            FatalErrorInFunction
-                << "no fluid mesh: " << meshDir << "/points is missing. The cfd level needs a mesh"
-                << " of the water that ends at its surface: run blockMesh (system/blockMeshDict)"
-                << (Pstream::parRun() ? ", then decomposePar" : "") << exit(FatalError);
-        }
-    }
+    #include "checkFluidMesh.H"
     #include "createMesh.H"
 
     ::iceCoupling::MpiForSerialRun mpi;
     pisoControl piso(mesh);
 
+    const word hydrostaticApplication("ridgeDEM");
     #include "createFields.H"
 
-    if (runTime.controlDict().getOrDefault("adjustTimeStep", false))
-    {
-        FatalIOErrorInFunction(runTime.controlDict())
-            << "entry 'adjustTimeStep': must be off; the fluid advances each coupling"
-            << " time in a fixed whole number of steps" << exit(FatalIOError);
-    }
-    const label couplingSteps = cfdProperties.get<label>("couplingInterval");
-    if (couplingSteps < 1)
-    {
-        FatalIOErrorInFunction(cfdProperties)
-            << "entry 'couplingInterval' is " << couplingSteps << ": it is the number of DEM steps"
-            << " per coupling step, a whole number >= 1" << exit(FatalIOError);
-    }
-    const scalar largestFluidStep = runTime.deltaTValue();
+    #include "couplingSteps.H"
     const fileName caseDir(runTime.globalPath());
 
     iceDEM::RidgeSettings settings;
@@ -106,116 +85,22 @@ int main(int argc, char *argv[])
     settings.stage = "load";
 
     const auto wallStart = std::chrono::steady_clock::now();
-    std::unique_ptr<::iceCoupling::DemCoupling> dem;
-    std::unique_ptr<couplingInterval> interval;
-    std::unique_ptr<particleFluidCoupling> couplingPtr;
-    std::vector<::iceCoupling::CouplingParticle> particles;
-
-    iceDEM::ExternalWater water;
-    water.density = rho.value();
-    water.stepsPerAdvance = couplingSteps;
-
-    // Where RidgeScene would put its hydrostatic water: the coupling's fix,
-    // before the bonds' fix. The DEM time step is known from here on.
-    water.defineForceFix = [&](iceDEM::LiggghtsInstance& lmp, double surfaceLevel)
+    const word surfaceSource("DEM/ridge.h5; postProcessing/geometry.json waterLevel");
+    const auto checkCouplingTime = [&](double demStep)
     {
-        lmp.command("fix cfdCoupling all external pf/callback 1 1");
-        dem.reset(new ::iceCoupling::DemCoupling(lmp, "cfdCoupling"));
-
-        const scalar couplingTime = couplingSteps*lmp.timeStep();
-        const label fluidSteps = max(label(1), label(std::ceil(couplingTime/largestFluidStep - 1e-9)));
-        runTime.setDeltaT(couplingTime/fluidSteps);
-        interval.reset(new couplingInterval(cfdProperties, lmp.timeStep(), runTime.deltaTValue()));
-
-        const scalar sampleSteps = settings.loading.sampleInterval/(settings.loading.speed*lmp.timeStep());
+        const scalar sampleSteps = settings.loading.sampleInterval/(settings.loading.speed*demStep);
         if (couplingSteps > 1.5*sampleSteps)
         {
             FatalIOErrorInFunction(cfdProperties)
-                << "entry 'couplingInterval': " << couplingSteps << " DEM steps of " << lmp.timeStep()
-                << " s move the platen " << couplingSteps*lmp.timeStep()*settings.loading.speed*1e3
+                << "entry 'couplingInterval': " << couplingSteps << " DEM steps of " << demStep
+                << " s move the platen " << couplingSteps*demStep*settings.loading.speed*1e3
                 << " mm, more than the force's sampleInterval " << settings.loading.sampleInterval*1e3
                 << " mm (system/loadingDict): the force is sampled after whole coupling steps;"
                 << " use at most " << label(1.5*sampleSteps) << " DEM steps (one and a half samples)"
                 << exit(FatalIOError);
         }
-
-        const scalar meshTop = mesh.bounds().max().z();
-        if (mag(meshTop - surfaceLevel) > 1e-6)
-        {
-            FatalErrorInFunction
-                << "the fluid mesh's top is at z = " << meshTop << " m (system/blockMeshDict), the"
-                << " water surface where the assembled ridge floats at z = " << surfaceLevel
-                << " m (DEM/ridge.h5; postProcessing/geometry.json waterLevel): the mesh must end"
-                << " at the surface" << exit(FatalError);
-        }
-        // As a token: dictionary::set would print the value to 6 digits.
-        dictionary withSurface(cfdProperties);
-        withSurface.add(new primitiveEntry("waterLevel", token(meshTop)), true);
-        couplingPtr.reset(new particleFluidCoupling(mesh, withSurface, rho.value(), nu.value(), interval->time()));
-
-        Info<< "Coupling every " << interval->demSteps() << " DEM steps (" << interval->time()
-            << " s): " << interval->fluidSteps() << " fluid step(s) of " << runTime.deltaTValue()
-            << " s; water surface z = " << meshTop << " m" << nl << endl;
     };
-
-    bool exchangeStarted = false;
-    water.advance = [&](long steps)
-    {
-        if (steps % couplingSteps != 0)
-        {
-            FatalErrorInFunction << "asked for " << steps << " DEM steps, not a whole number of coupling"
-                << " steps of " << couplingSteps << abort(FatalError);
-        }
-        particleFluidCoupling& coupling = *couplingPtr;
-        if (!exchangeStarted)
-        {
-            // LIGGGHTS is set up and the ridge restored: the first exchange.
-            particles = dem->gatherAll();
-            coupling.updateFluidFraction(particles);
-            coupling.updateExchange(particles, U);
-            alpha = coupling.alpha();
-            alpha.oldTime();
-            exchangeStarted = true;
-        }
-        for (long k = 0; k < steps/couplingSteps; ++k)
-        {
-            // 1. The fluid crosses the coupling time with the exchange made at its start.
-            for (label sub = 0; sub < interval->fluidSteps(); ++sub)
-            {
-                ++runTime;
-                alpha = coupling.alpha();
-                #include "UEqn.H"
-                while (piso.correct())
-                {
-                    #include "pEqn.H"
-                }
-                p = p_rgh + gh;
-                runTime.write();
-            }
-
-            // 2. The particles get the same momentum and the new pressure gradient.
-            const volVectorField gradp("gradp", fvc::grad(p_rgh) + g);
-            coupling.updateForces(particles, U, gradp);
-            dem->setForces(particles, coupling.particleForces());
-
-            // 3. LIGGGHTS crosses it; the next exchange starts from where both are.
-            dem->advance(couplingSteps);
-            particles = dem->gatherAll();
-            coupling.updateFluidFraction(particles);
-            coupling.updateExchange(particles, U);
-        }
-    };
-
-    // The fluid's force on the ice, summed over the particles, as held over
-    // the last coupling step: its vertical part, drag and pressure (buoyancy
-    // and dynamic pressure).
-    water.columns = {"fluidForceZ", "dragZ", "pressureForceZ"};
-    water.values = [&]()
-    {
-        const vector drag = couplingPtr ? couplingPtr->totalDrag() : Zero;
-        const vector pressure = couplingPtr ? couplingPtr->totalPressureForce() : Zero;
-        return std::vector<double>{drag.z() + pressure.z(), drag.z(), pressure.z()};
-    };
+    #include "sceneWater.H"
 
     Info<< "\nLoading the ridge of " << caseDir << " in water solved by OpenFOAM\n" << endl;
     demModelsAction([&]()

@@ -1,0 +1,184 @@
+#!/usr/bin/python3
+"""The rubble settled at the cfd level against the hydrostatic level (physics.md section 6, issue 19
+item 1): the same blocks (same seed) rained into water that OpenFOAM solves (iceRubbleFoam, the
+case's cfd/ set-up) and into still water (rubbleDEM), each then compacted and bonded by rubbleDEM in
+still water as the case does, so that the keels of the punch and the ridges can start from either.
+
+A run is a copy of this case (runs/settling-<level>-<shape>/); the cfd one has cfd/ over it and a
+fluid mesh of the box from the floor to the still surface (boxLength, boxWidth from
+constant/rubbleProperties, surfaceZ from hydrostatic.surfaceLevel). A finished run made from the
+same inputs is reused (iceCases.prepared_run); an unfinished cfd settling starts again (it has no
+checkpoint of its fluid).
+
+Per level: settling time, at rest, thickness, porosity, ice above water, the water's vertical force
+on the settled ice against its weight (cfd), wall time, wall time per simulated second and
+particle-steps/s of the settling; after compaction and bonding: porosity, freeze-bonds. The plot
+gives the ice's volume fraction against height for both settled layers. Writes
+runs/settlingLevels_<shape>.{csv,md,png}; --publish runs nothing and copies them into results/ with
+the README's table.
+
+usage: settlingLevels.py [--shape cuboid|empirical] [--jobs N] [--publish]"""
+import argparse
+import concurrent.futures
+import json
+import os
+import shutil
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASE = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(CASE, "..", "..", "postProcessing"))
+import cfdRun  # noqa: E402
+import iceCases  # noqa: E402
+
+os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")   # OpenFOAM's utilities and iceRubbleFoam
+LEVELS = ("hydrostatic", "cfd")
+
+
+def run_dir(level, shape):
+    return os.path.join(CASE, "runs", f"settling-{level}-{shape}")
+
+
+def overlay_cfd(folder):
+    """cfd/ over a copy of a rubble case, the box's dimensions and the surface in its fluid mesh."""
+    for sub in ("0", "constant", "system"):
+        shutil.copytree(os.path.join(CASE, "cfd", sub), os.path.join(folder, sub), dirs_exist_ok=True)
+    props = os.path.join(folder, "constant", "rubbleProperties")
+    block = os.path.join(folder, "system", "blockMeshDict")
+    for entry, source in (("boxLength", (props, "box.length")), ("boxWidth", (props, "box.width")),
+                          ("surfaceZ", (os.path.join(folder, "constant", "couplingProperties"),
+                                        "hydrostatic.surfaceLevel"))):
+        iceCases.set_entry(block, entry, iceCases.get_entry(*source))
+
+
+def settle_cfd(folder, shape, ranks=1, app=None):
+    """The settling in iceRubbleFoam (app: another build's) on the case copy `folder` (its mesh
+    made here)."""
+    cfdRun.foam("blockMesh", folder)
+    if ranks > 1:
+        decompose = os.path.join(folder, "system", "decomposeParDict")
+        iceCases.set_entry(decompose, "numberOfSubdomains", ranks)
+        iceCases.set_entry(decompose, "coeffs.n", f"({ranks} 1 1)")
+        cfdRun.foam("decomposePar", folder, "-force")
+    args = ["-shape", shape] + (["-parallel"] if ranks > 1 else [])
+    iceCases.run_app(app or os.path.join(iceCases.BUILD, "coupling", "iceRubbleFoam"), folder, ranks, args,
+                     "log.iceRubbleFoam")
+
+
+def execute(level, shape):
+    def prepare(folder):
+        iceCases.copy_case(CASE, folder)
+        if level == "cfd":
+            overlay_cfd(folder)
+
+    target = iceCases.prepared_run(run_dir(level, shape), prepare, settings=[shape])
+    if not iceCases.finished(target):
+        if level == "cfd":
+            settle_cfd(target, shape)
+        else:
+            iceCases.run_app("rubbleDEM", target, 1, ["-stage", "settle", "-shape", shape], "log.settle")
+        for stage in ("compact", "bond"):
+            iceCases.run_app("rubbleDEM", target, 1, ["-stage", stage, "-shape", shape], f"log.{stage}")
+    return target
+
+
+def settling(target):
+    return json.load(open(os.path.join(target, "postProcessing", "settling.json")))
+
+
+def row(level, target):
+    s, b = settling(target), iceCases.summary(target)
+    fluid = s.get("fluidForceZ_N")
+    return {"water": level, "settled_time_s": round(s["settled_time_s"], 2), "at_rest": s["at_rest"],
+            "thickness_m": round(s["thickness_m"], 4), "porosity": round(s["porosity"], 4),
+            "ice_above_water": round(s["ice_volume_above_water_fraction"], 4),
+            "freeboard_m": round(s["freeboard_m"], 4),
+            "fluid_force_over_weight": round(fluid / s["weight_N"], 4) if fluid is not None else "",
+            "drag_N": round(s["dragZ_N"], 2) if fluid is not None else "",
+            "particles": s["particles"], "steps": s["steps"], "wall_s": round(s["wall_s"], 1),
+            "wall_per_simulated_s": round(s["wall_per_simulated_s"], 2),
+            "particle_steps_per_s": round(s["particle_steps_per_s"], -3),
+            "compacted_porosity": round(b["compaction"]["porosity"], 4), "freeze_bonds": b["freeze_bonds"]}
+
+
+def table(rows):
+    columns = list(rows[0])
+    csv_text = "\n".join([",".join(columns)] + [",".join(str(r[c]) for c in columns) for r in rows]) + "\n"
+    lines = ["| water | settled after [s] | thickness [m] | porosity | ice above water | water's force / weight "
+             "| settling wall [s] (per simulated s) | particle-steps/s | compacted porosity, freeze-bonds |",
+             "|---|" + "---|" * 8]
+    for r in rows:
+        ratio = "-" if r["fluid_force_over_weight"] == "" else f"{r['fluid_force_over_weight']:.4f}"
+        lines.append(f"| {r['water']} | {r['settled_time_s']:.1f}{'' if r['at_rest'] else ' (NOT at rest)'} "
+                     f"| {r['thickness_m']:.3f} | {r['porosity']:.3f} | {100 * r['ice_above_water']:.2f} % "
+                     f"| {ratio} | {r['wall_s']:.0f} ({r['wall_per_simulated_s']:.1f}) "
+                     f"| {r['particle_steps_per_s']:.3g} | {r['compacted_porosity']:.3f}, {r['freeze_bonds']} |")
+    return csv_text, "\n".join(lines) + "\n"
+
+
+def ice_fraction_profile(target, bins):
+    """The settled spheres' volume per height bin over the box's volume there (DEM/settled.h5)."""
+    import h5py
+    import numpy as np
+    props = os.path.join(target, "constant", "rubbleProperties")
+    area = float(iceCases.get_entry(props, "box.length")) * float(iceCases.get_entry(props, "box.width"))
+    with h5py.File(os.path.join(target, "DEM", "settled.h5"), "r") as f:
+        z, r = f["particles"]["z"][()], f["particles"]["radius"][()]
+    volume, _ = np.histogram(z, bins=bins, weights=4.0 / 3.0 * np.pi * r ** 3)
+    return volume / (area * np.diff(bins))
+
+
+def plot(shape, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    bins = np.linspace(0.0, 1.2, 49)
+    fig, ax = plt.subplots(figsize=(5.5, 5))
+    for colour, level in zip(("tab:blue", "tab:red"), LEVELS):
+        target = run_dir(level, shape)
+        ax.plot(ice_fraction_profile(target, bins), 0.5 * (bins[1:] + bins[:-1]), color=colour,
+                label=f"{level}: porosity {settling(target)['porosity']:.3f}")
+    ax.axhline(float(iceCases.get_entry(os.path.join(CASE, "cfd", "constant", "couplingProperties"),
+                                        "hydrostatic.surfaceLevel")), color="k", ls="--", lw=1, label="water surface")
+    ax.set_xlabel("sphere volume fraction in the box")
+    ax.set_ylabel("height above the box floor (m)")
+    ax.set_title(f"Settled rubble ({shape}) at both water levels")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--shape", choices=("cuboid", "empirical"), default="cuboid")
+    parser.add_argument("--jobs", type=iceCases.whole_number(1), default=max(1, min(2, os.cpu_count() or 1)))
+    parser.add_argument("--publish", action="store_true",
+                        help="run nothing; copy the finished runs' table and plot into results/ and the README")
+    args = parser.parse_args()
+    if args.publish:
+        missing = [run_dir(level, args.shape) for level in LEVELS if not iceCases.finished(run_dir(level, args.shape))]
+        if missing:
+            sys.exit("settlingLevels.py --publish: not finished: " + ", ".join(missing))
+    else:
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            for future in [pool.submit(execute, level, args.shape) for level in LEVELS]:
+                future.result()
+    rows = [row(level, run_dir(level, args.shape)) for level in LEVELS]
+    csv_text, md = table(rows)
+    folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs")
+    base = os.path.join(folder, f"settlingLevels_{args.shape}")
+    iceCases.write_atomically(base + ".csv", csv_text)
+    iceCases.write_atomically(base + ".md", md)
+    plot(args.shape, base + ".png")
+    if args.publish:
+        iceCases.write_readme_table(os.path.join(CASE, "README.md"), "settling water table",
+                                    "studies/settlingLevels.py --publish", f"results/settlingLevels_{args.shape}.csv", md)
+    print(md, end="")
+
+
+if __name__ == "__main__":
+    main()
