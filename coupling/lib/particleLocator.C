@@ -14,6 +14,7 @@ particleLocator::particleLocator
 :
     mesh_(mesh),
     model_(model),
+    localBounds_(mesh.points(), false),
     verticalSharing_(false)
 {
     const word sharing(couplingProperties.getOrDefault<word>("verticalSharing", "none"));
@@ -91,6 +92,12 @@ label particleLocator::sampleCell(const point& p, label centreCell) const
             }
         }
     }
+    // Samples of spheres at a wall or crossing the water surface lie outside
+    // the mesh: no cell has them, and the search would look through them all.
+    if (!localBounds_.contains(p))
+    {
+        return -1;
+    }
     return mesh_.findCell(p, polyMesh::CELL_TETS);
 }
 
@@ -133,12 +140,11 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
 
     // One list for one reduction: the centre owner then the sample owners of each particle.
     std::vector<int> owner(nParticles*(nSamples + 1), nobody);
-    const boundBox localBox(mesh_.points(), false);   // mesh_.bounds() is global
     for (label i = 0; i < nParticles; ++i)
     {
         const point c(particles[i].position[0], particles[i].position[1], particles[i].position[2]);
         const scalar d = particles[i].diameter;
-        if (!localBox.overlaps(c, sqr(0.5*d)))
+        if (!localBounds_.overlaps(c, sqr(0.5*d)))
         {
             continue;
         }
