@@ -138,7 +138,7 @@ def plot(shape, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
-    bins = np.linspace(0.0, 1.2, 49)
+    bins = np.linspace(0.0, 1.25, 26)     # 5 cm: about a sphere diameter
     fig, ax = plt.subplots(figsize=(5.5, 5))
     for colour, level in zip(("tab:blue", "tab:red"), LEVELS):
         target = run_dir(level, shape)
