@@ -365,6 +365,14 @@ def write_atomically(path, text):
     os.replace(tmp, path)
 
 
+def save_figure(fig, path, dpi=110):
+    """A matplotlib figure laid out and written to path (a PNG) whole or not at all."""
+    fig.tight_layout()
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=dpi)
+    os.replace(tmp, path)
+
+
 def git_revision():
     """The short revision of the checkout with a '+' if it has uncommitted changes ('unknown' outside git)."""
     try:

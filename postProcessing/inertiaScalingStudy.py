@@ -403,10 +403,7 @@ def plot_curves(rows, path):
     for ax in list(axes.flat)[len(scenes):]:
         ax.set_visible(False)
     fig.suptitle("Force curves with the inertia scaled by 1, 10, 100 (dashed grey: unscaled, other packings)")
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    iceCases.save_figure(fig, path)
 
 
 def plot_speed_accuracy(rows, path):
@@ -465,10 +462,7 @@ def plot_speed_accuracy(rows, path):
     ax2.set_title("Every scene: steps against the change, factors 1 (drawn at 1e-4), 10, 100", fontsize=9)
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    iceCases.save_figure(fig, path)
 
 
 def main():

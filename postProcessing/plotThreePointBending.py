@@ -77,10 +77,7 @@ def main():
     right.set_title("strength against thickness (grey: target ± 5 %)")
     right.legend()
     right.grid(alpha=0.3)
-    fig.tight_layout()
-    tmp = a.out + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, a.out + ".png")
+    iceCases.save_figure(fig, a.out + ".png", dpi=120)
 
 
 if __name__ == "__main__":

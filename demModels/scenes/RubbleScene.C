@@ -55,6 +55,22 @@ const NamedEnum<CompactionMethod> compactionMethodNames
     {CompactionMethod::none, "none"},
 }};
 
+
+//- The settled layer's figures (settling.json and summary.json alike).
+void addSettledLayer(Json& j, const SettledLayer& layer)
+{
+    j["settled_time_s"] = layer.time;
+    j["at_rest"] = layer.atRest;
+    j["kinetic_energy_per_particle_J"] = layer.kineticEnergyPerParticle;
+    j["layer_bottom_m"] = layer.bottom;
+    j["layer_top_m"] = layer.top;
+    j["thickness_m"] = layer.thickness;
+    j["porosity"] = layer.porosity;
+    j["sphere_porosity"] = layer.spherePorosity;
+    j["ice_volume_above_water_fraction"] = layer.volumeAboveWater;
+    j["freeboard_m"] = layer.freeboard;
+}
+
 } // namespace
 
 
@@ -736,16 +752,7 @@ void RubbleScene::writeSettlingSummary() const
     Json j;
     j["water"] = externalWater_ ? externalWater_->name : toString(water_.level);
     j["water_level_m"] = water_.hydrostatic.surfaceLevel;
-    j["settled_time_s"] = layer_.time;
-    j["at_rest"] = layer_.atRest;
-    j["kinetic_energy_per_particle_J"] = layer_.kineticEnergyPerParticle;
-    j["layer_bottom_m"] = layer_.bottom;
-    j["layer_top_m"] = layer_.top;
-    j["thickness_m"] = layer_.thickness;
-    j["porosity"] = layer_.porosity;
-    j["sphere_porosity"] = layer_.spherePorosity;
-    j["ice_volume_above_water_fraction"] = layer_.volumeAboveWater;
-    j["freeboard_m"] = layer_.freeboard;
+    addSettledLayer(j, layer_);
     j["weight_N"] = weight;
     // The water's force on the ice (cfd: summed over the particles), mean and standard
     // deviation of the samples after each check interval over the last second.
@@ -1062,16 +1069,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["block_shape"] = name(settings_.shape);
     j["blocks"] = long(rubble_.blocks.size());
     j["block_ice_volume_m3"] = rubble_.iceVolume;
-    j["settled_time_s"] = layer_.time;
-    j["at_rest"] = layer_.atRest;
-    j["kinetic_energy_per_particle_J"] = layer_.kineticEnergyPerParticle;
-    j["layer_bottom_m"] = layer_.bottom;
-    j["layer_top_m"] = layer_.top;
-    j["thickness_m"] = layer_.thickness;
-    j["porosity"] = layer_.porosity;
-    j["sphere_porosity"] = layer_.spherePorosity;
-    j["ice_volume_above_water_fraction"] = layer_.volumeAboveWater;
-    j["freeboard_m"] = layer_.freeboard;
+    addSettledLayer(j, layer_);
     j["water_level_m"] = water_.hydrostatic.surfaceLevel;
     j["freeze_bonds"] = long(freezeStats_.bonds);
     j["block_contacts"] = long(freezeStats_.blockContacts);

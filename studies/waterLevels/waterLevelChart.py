@@ -268,10 +268,7 @@ def plot(rows, path):
         ax.set_xlabel(f"error against {check}", fontsize=8)
         ax.grid(alpha=0.3, axis="y")
     fig.suptitle("Water levels: cost per simulated second (bars) and error against each scene's check (labels)")
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    iceCases.save_figure(fig, path)
 
 
 def main():

@@ -145,10 +145,7 @@ def main():
     ax.legend(fontsize=8)
     ax.set_title("Ridge flexure run %d (%s): force against speed" % (run["run"], args.resolution))
     ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    tmp = base + ".png.tmp"
-    fig.savefig(tmp, format="png", dpi=120)
-    os.replace(tmp, base + ".png")
+    iceCases.save_figure(fig, base + ".png", dpi=120)
     if args.publish:
         iceCases.write_readme_table(os.path.join(CASE, "README.md"), "rate convergence table",
                                     "studies/rateConvergence.py --publish", "results/%s.md" % os.path.basename(base),

@@ -358,10 +358,7 @@ def plot(rows, base):
         ax.grid(alpha=0.3)
     ax2.legend(fontsize=8)
     fig.suptitle("Ridge flexure matrix (%s resolution)" % os.path.basename(base).split("_")[-1])
-    fig.tight_layout()
-    tmp = base + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, base + ".png")
+    iceCases.save_figure(fig, base + ".png", dpi=120)
 
 
 def main():

@@ -127,10 +127,7 @@ def plot(runs, resolution, path):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle(f"Ridge flexure at the hydrostatic and the cfd level ({resolution} resolution)")
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    iceCases.save_figure(fig, path)
 
 
 def main():

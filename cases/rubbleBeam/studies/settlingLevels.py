@@ -151,10 +151,7 @@ def plot(shape, path):
     ax.set_title(f"Settled rubble ({shape}) at both water levels")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    iceCases.save_figure(fig, path)
 
 
 def main():
