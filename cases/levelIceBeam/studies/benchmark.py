@@ -52,10 +52,10 @@ def timed(cmd, cwd, log):
     return wall, rss / 1024.0
 
 
-def run_bonded(app, case, particles, steps):
-    """The bonded beam (iceBeamDEM) on one rank."""
-    _, rss = timed(["mpirun", "-np", "1", app, "-case", case, "-particles", str(particles), "-steps", str(steps)],
-                   case, "log.bonded")
+def run_bonded(app, case, particles, steps, ranks=1):
+    """The bonded beam (iceBeamDEM) on `ranks` ranks; peak RSS: the largest rank's."""
+    _, rss = timed(["mpirun", "-np", str(ranks), "--oversubscribe", app, "-case", case, "-particles", str(particles),
+                    "-steps", str(steps)], case, "log.bonded")
     s = iceCases.summary(case)
     return {"model": "iceBeamDEM bonded (this project)", "particles": s["particles"], "bonds": s["bonds"],
             "steps": s["steps"], "dt": s["dt"], "loop_wall_s": s["loop_wall_s"],
