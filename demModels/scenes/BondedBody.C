@@ -62,6 +62,10 @@ BondedBody buildBondedBody
         step << "; inertia scaled by " << inertiaScaling;
     }
     step << ")";
+    if (body.dt > limits.limit)
+    {
+        step << " ABOVE THE LIMIT: timeStep.refuseUnsafe no";
+    }
     log(step.str());
     return body;
 }

@@ -210,12 +210,13 @@ TEST(BondDynamics, HystereticDampingRemovesExpectedEnergyFractionPerCycle)
     }
 }
 
-TEST(BondDynamics, ProgramLimitSitsBelowMeasuredInstabilityOfUndampedPack)
+// The smallest time-step factor c (in steps of 5 %) at which the small pack's energy grows tenfold
+// within 3,000 steps, with the given damping; 0 if none up to 3.
+double firstUnstableFactor(const DampingParameters& dampingModel, double r)
 {
-    const double r = 0.02;
     auto blowsUp = [&](double factor)
     {
-        SerialBondedSystem system(unbreakableIce(), damping(DampingModel::none));
+        SerialBondedSystem system(unbreakableIce(), dampingModel);
         fillBlock(system, 2, 2, 2, r, 17);
         system.bondWithin(1.1);
         randomVelocities(system, 1e-3, 0.1, 23);
@@ -233,19 +234,19 @@ TEST(BondDynamics, ProgramLimitSitsBelowMeasuredInstabilityOfUndampedPack)
         }
         return false;
     };
-
-    // Scan the time-step factor c upwards to the first that blows up.
-    double unstable = 0.0;
     for (double c = 0.05; c < 3.0; c *= 1.05)
     {
         if (blowsUp(c))
         {
-            unstable = c;
-            break;
+            return c;
         }
     }
-    ASSERT_GT(unstable, 0.0) << "the pack never went unstable";
+    return 0.0;
+}
 
+// The program's largest accepted factor for the small pack.
+double programLimitFactor(double r)
+{
     SerialBondedSystem probe(unbreakableIce(), damping(DampingModel::none));
     fillBlock(probe, 2, 2, 2, r, 17);
     probe.bondWithin(1.1);
@@ -260,11 +261,40 @@ TEST(BondDynamics, ProgramLimitSitsBelowMeasuredInstabilityOfUndampedPack)
     props.material.youngsModulus = youngs;
     const TimeStepLimits limits =
         timeStepLimits(props, r * 0.99, *std::max_element(count.begin(), count.end()));
-    const double limitFactor = limits.limit / stepFor(r * 0.99, 1.0);
+    return limits.limit / stepFor(r * 0.99, 1.0);
+}
+
+TEST(BondDynamics, ProgramLimitSitsBelowMeasuredInstabilityOfUndampedPack)
+{
+    const double r = 0.02;
+    const double unstable = firstUnstableFactor(damping(DampingModel::none), r);
+    ASSERT_GT(unstable, 0.0) << "the pack never went unstable";
+    const double limitFactor = programLimitFactor(r);
+    IceProperties props;
     std::cout << "[ info ] undamped pack unstable at c = " << unstable
               << "; program limit c = " << limitFactor
               << "; default c = " << props.timeStep.factor << std::endl;
     EXPECT_LT(limitFactor, unstable);
     EXPECT_GT(limitFactor, 0.2 * unstable) << "limit so low it wastes steps";
     EXPECT_LT(props.timeStep.factor, limitFactor);
+}
+
+// Issue 20's stability map, the small pack's row: damping (the cases' hysteretic alpha 0.1, viscous
+// ratio 0.05) may move where the step fails; the program's limit must stay below it for each.
+TEST(BondDynamics, ProgramLimitSitsBelowMeasuredInstabilityOfDampedPacks)
+{
+    const double r = 0.02;
+    const double limitFactor = programLimitFactor(r);
+    DampingParameters viscous = damping(DampingModel::viscous);
+    viscous.dampingRatio = 0.05;
+    for (const auto& [name, model] : {std::pair<const char*, DampingParameters>{"hysteretic 0.1",
+                                          damping(DampingModel::hysteretic, 0.1)},
+                                      {"viscous 0.05", viscous}})
+    {
+        const double unstable = firstUnstableFactor(model, r);
+        ASSERT_GT(unstable, 0.0) << name << ": the pack never went unstable";
+        std::cout << "[ info ] pack with " << name << " damping unstable at c = " << unstable
+                  << "; program limit c = " << limitFactor << std::endl;
+        EXPECT_LT(limitFactor, unstable) << name;
+    }
 }

@@ -146,7 +146,7 @@ DampingParameters readDamping(const Dictionary& d)
 
 TimeStepParameters readTimeStep(const Dictionary& d)
 {
-    d.checkKeys({"factor", "deltaT"});
+    d.checkKeys({"factor", "deltaT", "refuseUnsafe"});
 
     TimeStepParameters t;
     t.factor = readScalarOrDefault(d, "factor", positive(), t.factor);
@@ -156,6 +156,7 @@ TimeStepParameters readTimeStep(const Dictionary& d)
         {0, true, inf, false, "a number >= 0 in s (0: use timeStep.factor)"},
         t.deltaT
     );
+    t.refuseUnsafe = d.getBoolOrDefault("refuseUnsafe", t.refuseUnsafe);
     return t;
 }
 

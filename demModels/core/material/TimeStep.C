@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -76,7 +77,13 @@ double chooseTimeStep
 {
     const bool fixed = props.timeStep.deltaT > 0.0;
     const double dt = fixed ? props.timeStep.deltaT : limits.recommended;
-    if (dt > limits.limit)
+    if (dt > limits.limit && !props.timeStep.refuseUnsafe)
+    {
+        std::cerr << "warning: " << dictPath << ": time step " << dt << " s is above the program's limit "
+                  << limits.limit << " s (" << limits.stiffestSpringName << "); it runs because "
+                  << "timeStep.refuseUnsafe is no (stability studies only)" << std::endl;
+    }
+    else if (dt > limits.limit)
     {
         std::ostringstream msg;
         msg << "time step " << dt << " s is unsafe: the stiffest spring ("
