@@ -422,6 +422,24 @@ def publish_files(sources, folder, names=None):
         print("published", target)
 
 
+def write_study_outputs(out, stem, texts):
+    """A study's outputs, out/<stem>.<extension> for each {extension: text}, each written whole."""
+    os.makedirs(out, exist_ok=True)
+    for extension, text in texts.items():
+        write_atomically(os.path.join(out, f"{stem}.{extension}"), text)
+
+
+def publish_study(study, out, stem, extensions, table_name, source_extension):
+    """The --publish of the script studies/<name>/<stem>.py: out/<stem>.<ext> copied into the
+    study's results/, and results/<stem>.md written as the generated table `table_name` of its
+    README.md."""
+    results = os.path.join(study, "results")
+    publish_files([os.path.join(out, f"{stem}.{ext}") for ext in extensions], results)
+    folder = os.path.relpath(study, TOP)
+    write_readme_table(os.path.join(study, "README.md"), table_name, f"{folder}/{stem}.py --publish",
+                       f"{folder}/results/{stem}.{source_extension}", open(os.path.join(results, f"{stem}.md")).read())
+
+
 # argparse types for the studies' options, strict as the applications' command
 # lines: the whole string is read, and a count, a speed or a length of 0 or
 # less is refused (argparse then prints the usage and exits with status 2).

@@ -36,12 +36,7 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"rankSpeedup.{ext}") for ext in ("json", "md")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "rank speed-up table",
-                                    "studies/rankSpeedup/rankSpeedup.py --publish",
-                                    "studies/rankSpeedup/results/rankSpeedup.json",
-                                    open(os.path.join(results, "rankSpeedup.md")).read())
+        iceCases.publish_study(HERE, args.out, "rankSpeedup", ("json", "md"), "rank speed-up table", "json")
         return
     work = os.path.join(args.out, "windows")
     rows = []
@@ -64,9 +59,7 @@ def main():
                          f"| {p['two_ranks_wall_per_simulated_s']:.1f} | {p['speedup']:.2f} | {median} |")
     md = "\n".join(lines) + (f"\n\nTarget 1.8 (issue 17). Loading loops of {1e3 * args.travel:g} mm of travel, "
                              f"{report['date']}, load average {report['load_average_at_end']:.1f} at the end.\n")
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "rankSpeedup.json"), json.dumps(report, indent=2) + "\n")
-    iceCases.write_atomically(os.path.join(args.out, "rankSpeedup.md"), md)
+    iceCases.write_study_outputs(args.out, "rankSpeedup", {"json": json.dumps(report, indent=2) + "\n", "md": md})
     print(md, end="")
 
 

@@ -70,12 +70,7 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"coupledScaling.{ext}") for ext in ("json", "md")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "coupled scaling table",
-                                    "studies/scaling/coupledScaling.py --publish",
-                                    "studies/scaling/results/coupledScaling.json",
-                                    open(os.path.join(results, "coupledScaling.md")).read())
+        iceCases.publish_study(HERE, args.out, "coupledScaling", ("json", "md"), "coupled scaling table", "json")
         return
     ice_foam = os.path.join(iceCases.BUILD, "coupling", "iceFoam")
     rows = []
@@ -113,9 +108,7 @@ def main():
               f"| {r['peak_rss_MiB_per_rank']:.0f} | {r['KiB_per_particle']:.1f} |" for r in rows]
     md = "\n".join(lines) + (f"\n\n{args.end_time:g} s of the rise on {args.ranks} ranks (iceFoam, coupling every 100 DEM "
                              f"steps), {report['date']}, load average {report['load_average_at_end']:.1f} at the end.\n")
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "coupledScaling.json"), json.dumps(report, indent=2) + "\n")
-    iceCases.write_atomically(os.path.join(args.out, "coupledScaling.md"), md)
+    iceCases.write_study_outputs(args.out, "coupledScaling", {"json": json.dumps(report, indent=2) + "\n", "md": md})
     print(md, end="")
 
 

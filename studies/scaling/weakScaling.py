@@ -32,11 +32,7 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"weakScaling.{ext}") for ext in ("json", "md")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "weak scaling table",
-                                    "studies/scaling/weakScaling.py --publish", "studies/scaling/results/weakScaling.json",
-                                    open(os.path.join(results, "weakScaling.md")).read())
+        iceCases.publish_study(HERE, args.out, "weakScaling", ("json", "md"), "weak scaling table", "json")
         return
     app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
     rows = []
@@ -63,9 +59,7 @@ def main():
               f"| {r['setup_wall_s']:.0f} | {r['peak_rss_MiB_per_rank']:.0f} | {r['KiB_per_particle']:.1f} |" for r in rows]
     md = "\n".join(lines) + (f"\n\n{args.steps} loading steps on {args.ranks} ranks, {report['date']}, "
                              f"load average {report['load_average_at_end']:.1f} at the end.\n")
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "weakScaling.json"), json.dumps(report, indent=2) + "\n")
-    iceCases.write_atomically(os.path.join(args.out, "weakScaling.md"), md)
+    iceCases.write_study_outputs(args.out, "weakScaling", {"json": json.dumps(report, indent=2) + "\n", "md": md})
     print(md, end="")
 
 

@@ -145,20 +145,13 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"couplingMap.{ext}") for ext in ("csv", "md", "png")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "coupling map table",
-                                    "studies/stabilityMap/couplingMap.py --publish",
-                                    "studies/stabilityMap/results/couplingMap.csv",
-                                    open(os.path.join(results, "couplingMap.md")).read())
+        iceCases.publish_study(HERE, args.out, "couplingMap", ("csv", "md", "png"), "coupling map table", "csv")
         return
     work = os.path.join(args.out, "coupling")
     rows = [point(work, s, t, c) for s in SCHEMES for c in args.cells for t in args.times]
     csv_text, md = table(rows)
     md += f"\n{time.strftime('%Y-%m-%d %H:%M')}, revision {iceCases.git_revision()}.\n"
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "couplingMap.csv"), csv_text)
-    iceCases.write_atomically(os.path.join(args.out, "couplingMap.md"), md)
+    iceCases.write_study_outputs(args.out, "couplingMap", {"csv": csv_text, "md": md})
     plot(rows, os.path.join(args.out, "couplingMap.png"))
     print(md, end="")
 

@@ -136,20 +136,14 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"rateMap.{ext}") for ext in ("csv", "md", "png")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "rate map table",
-                                    "studies/stabilityMap/rateMap.py --publish", "studies/stabilityMap/results/rateMap.csv",
-                                    open(os.path.join(results, "rateMap.md")).read())
+        iceCases.publish_study(HERE, args.out, "rateMap", ("csv", "md", "png"), "rate map table", "csv")
         return
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         beam = list(pool.map(lambda v: beam_point(os.path.join(args.out, "rate"), v), args.speeds))
     rows = with_changes(beam + ridge_points() + punch_points())
     csv_text, md = table(rows)
     md += f"\n{time.strftime('%Y-%m-%d %H:%M')}, revision {iceCases.git_revision()}.\n"
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "rateMap.csv"), csv_text)
-    iceCases.write_atomically(os.path.join(args.out, "rateMap.md"), md)
+    iceCases.write_study_outputs(args.out, "rateMap", {"csv": csv_text, "md": md})
     plot(rows, os.path.join(args.out, "rateMap.png"))
     print(md, end="")
 

@@ -110,21 +110,14 @@ def main():
     parser.add_argument("--publish", action="store_true")
     args = parser.parse_args()
     if args.publish:
-        results = os.path.join(HERE, "results")
-        iceCases.publish_files([os.path.join(args.out, f"stabilityMap.{ext}") for ext in ("csv", "md", "png")], results)
-        iceCases.write_readme_table(os.path.join(HERE, "README.md"), "stability map table",
-                                    "studies/stabilityMap/stabilityMap.py --publish",
-                                    "studies/stabilityMap/results/stabilityMap.csv",
-                                    open(os.path.join(results, "stabilityMap.md")).read())
+        iceCases.publish_study(HERE, args.out, "stabilityMap", ("csv", "md", "png"), "stability map table", "csv")
         return
     points = [(d, f) for d in DAMPING for f in args.factors]
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         rows = list(pool.map(lambda p: run_point(os.path.join(args.out, "points"), *p), points))
     csv_text, md = table(rows)
     md += f"\n{time.strftime('%Y-%m-%d %H:%M')}, revision {iceCases.git_revision()}.\n"
-    os.makedirs(args.out, exist_ok=True)
-    iceCases.write_atomically(os.path.join(args.out, "stabilityMap.csv"), csv_text)
-    iceCases.write_atomically(os.path.join(args.out, "stabilityMap.md"), md)
+    iceCases.write_study_outputs(args.out, "stabilityMap", {"csv": csv_text, "md": md})
     plot(rows, os.path.join(args.out, "stabilityMap.png"))
     print(md, end="")
 
