@@ -86,13 +86,15 @@ def main():
     p.add_argument("-repeats", type=iceCases.whole_number(1), default=3, help="bonded/plain pairs run back to back")
     p.add_argument("-out", default=os.path.join(here, "..", "runs", "benchmark"))
     p.add_argument("-publish", action="store_true", help="run nothing; copy -out's benchmark.json and .md into studies/benchmark/")
+    p.add_argument("-noYade", action="store_true",
+                   help="the bonded and plain pairs only (no Yade installed); not for -publish")
     a = p.parse_args()
     if a.publish:
         iceCases.publish_files([os.path.join(a.out, n) for n in ("benchmark.json", "benchmark.md")],
                                os.path.join(here, "benchmark"))
         return
-    if shutil.which("yade") is None:
-        sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade")
+    if shutil.which("yade") is None and not a.noYade:
+        sys.exit("benchmark.py: Yade is not installed; run: apt-get install yade (or -noYade: the bonded and plain pairs only)")
     load_start = os.getloadavg()[0]   # the machine may be shared: timings are only comparable at low load
     case = iceCases.copy_case(os.path.join(here, ".."), os.path.join(a.out, "case"))
     app = os.path.join(iceCases.BUILD, "demModels", "iceBeamDEM")
@@ -106,6 +108,12 @@ def main():
         granular_runs.append(run_granular(bench, case, bonded_runs[-1]["dt"]))
     pair_ratios = [g["particle_steps_per_s"] / b["particle_steps_per_s"] for b, g in zip(bonded_runs, granular_runs)]
     results = [median_run(bonded_runs), median_run(granular_runs)]
+    if a.noYade:
+        ratio = statistics.median(pair_ratios)
+        print(f"bonded cost over plain LIGGGHTS per particle-step: {ratio:.2f} (pairs {', '.join(f'{r:.2f}' for r in pair_ratios)}); "
+              f"bonded {results[0]['particle_steps_per_s']:.3g}, plain {results[1]['particle_steps_per_s']:.3g} particle-steps/s; "
+              f"load {load_start:.1f} -> {os.getloadavg()[0]:.1f}")
+        return
 
     # 3. Yade CohFrictMat bonded
     yade_json = os.path.join(case, "yade.json")
