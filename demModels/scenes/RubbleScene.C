@@ -930,14 +930,7 @@ void RubbleScene::release()
     lmp_->command("group released type " + std::to_string(mobileType));
     lmp_->command("fix integrate released nve/sphere");
     plates_->withdraw();
-    long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
-    if (externalWater_)
-    {
-        const long k = externalWater_->stepsPerAdvance;
-        chunk = (chunk + k - 1)/k*k;
-        context_.log("No settling checkpoints at the " + externalWater_->name + " level (they would hold the "
-            "DEM only): a killed settling starts again");
-    }
+    const long chunk = std::max(1L, static_cast<long>(std::lround(settings_.checkInterval/dt_)));
     const double minTime = std::min(0.2, settings_.releaseTime);
     double t = 0.0, ke = 0.0;
     int quietChecks = 0;
