@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""A ridge run at the cfd level (icePunchFoam), in two steps around its assembly:
+"""A ridge run at the cfd level (icePunchFoam) or the vof level (icePunchInterFoam), in two
+steps around its assembly:
 
-  overlay  the hydrostatic run folder with a case's cfd/ set-up over it: OpenFOAM's 0/, system/
-           and constant/ files; the loading control (system/controlDict) moves to
-           system/loadingDict, where icePunchFoam reads it.
+  overlay  the hydrostatic run folder with a case's cfd/ (or vof/) set-up over it: OpenFOAM's 0/,
+           system/ and constant/ files; the loading control (system/controlDict) moves to
+           system/loadingDict, where icePunchFoam and icePunchInterFoam read it.
   mesh     the fluid mesh from the box floor to the still surface where the assembled ridge
            floats (postProcessing/geometry.json: waterLevel, length, width into
            system/blockMeshDict; for a box without end walls, ends that reach past every sphere
-           of DEM/ridge.h5), blockMesh, and decomposePar for more than one rank.
+           of DEM/ridge.h5; a vof mesh, with airHeight, goes on to top = surface + airHeight, its fine
+           band from zFine = surface - fineDepth),
+           blockMesh, and decomposePar for more than one rank.
 
 Used by ../cases/rubblePunch/Allrun, ../cases/ridgeFlexure/studies/waterLevels.py and the cfd
 punch tests.
@@ -64,6 +67,10 @@ def mesh(run, ranks=1, cells=None):
     block = os.path.join(run, "system", "blockMeshDict")
     for entry, key in (("surfaceZ", "waterLevel"), ("boxWidth", "width")):
         iceCases.set_entry(block, entry, repr(geometry[key]))
+    if has_entry(block, "airHeight"):
+        level = geometry["waterLevel"]
+        iceCases.set_entry(block, "top", repr(level + float(iceCases.get_entry(block, "airHeight"))))
+        iceCases.set_entry(block, "zFine", repr(level - float(iceCases.get_entry(block, "fineDepth"))))
     if has_entry(block, "xMin"):
         low, high = particle_reach(run)
         iceCases.set_entry(block, "xMin", repr(min(geometry["x0"], low)))

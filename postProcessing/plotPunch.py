@@ -5,21 +5,27 @@ Writes to CASE/postProcessing/, each file atomically:
   punch.png        total platen force, its buoyancy share (rho_w g times the rise of the ice's
                    submerged volume) and force minus buoyancy share, against platen travel
                    (hydrostatic runs);
-  punchWater_<keel>.png  the same keel at the hydrostatic and the cfd level (runs <keel> and
-                   <keel>-cfd, ./Allrun -water cfd): force and buoyancy share;
+  punchWater_<keel>.png  the same keel at the hydrostatic level and the cfd and vof levels where
+                   run (runs <keel>, <keel>-cfd, <keel>-vof; ./Allrun -water cfd|vof): force
+                   and buoyancy share; at vof also the share as the experiment read it, rho_w g
+                   times the box's area times the level's rise plus the platen's own displaced
+                   water (everything pushed under), and the ice's share under the moving surface;
   breakage.png     broken bonds against time by mode, one panel per keel;
   maps.png         the failure analysis's maps (runs/<keel>/postProcessing/failureAnalysis/
                    moment_*.png) at half load before the peak, the peak and half load after it;
   punchSummary.csv one row per run: water level, peak force, buoyancy share at the peak, mean
                    force and buoyancy share over 20-100 mm, force and share (means over +-5 mm)
                    at 50, 80 and 100 mm, at the cfd level the drag and the pressure force less
-                   buoyancy over 20-100 mm (mean; standard deviation), broken bonds by mode and
-                   family, wall time, particle-steps/s.
+                   buoyancy over 20-100 mm (mean; standard deviation), at the vof level the
+                   level-rise and moving-surface shares (means over 20-100 mm, at 100 mm) and
+                   the level's rise at the end, broken bonds by mode and family, wall time,
+                   particle-steps/s.
 
-usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd]"""
+usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd cuboid-vof]"""
 import argparse
 import csv
 import io
+import json
 import os
 import sys
 
@@ -45,22 +51,46 @@ def columns(path):
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
+RHO_W, G = 1000.0, 9.81
+
+
 def water_level(run):
     return summary(run).get("water", "hydrostatic")
 
 
+def vof_shares(run, c):
+    """At the vof level (a waterLevel column), the buoyancy share as the experiment read it:
+    rho_w g times the box's area times the level's rise since the first sample, plus the
+    platen's own displaced water (the DEM platen displaces none in the fluid); and the ice's
+    share under the moving surface, rho_w g times the rise of the caps under it. None elsewhere."""
+    if "waterLevel" not in c:
+        return None
+    geometry = json.load(open(os.path.join(run, "postProcessing", "geometry.json")))
+    area = geometry["length"] * geometry["width"]
+    level_rise = RHO_W * G * area * (c["waterLevel"] - c["waterLevel"][0]) + c["platenBuoyancy"]
+    ice = RHO_W * G * (c["iceSubmergedVolume"] - c["iceSubmergedVolume"][0])
+    return {"levelRiseShare": level_rise, "iceShareMovingSurface": ice}
+
+
 def plot_water_levels(keel, runs, out):
-    """One keel at both water levels: force and buoyancy share against travel."""
+    """One keel at its water levels: force and buoyancy share against travel."""
     fig, ax = plt.subplots(figsize=(8, 5))
-    for colour, (level, run) in zip(("tab:blue", "tab:red"), runs.items()):
+    for colour, (level, run) in zip(("tab:blue", "tab:red", "tab:green"), runs.items()):
         c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
         mm = c["travel"] * 1e3
         ax.plot(mm, c["force"], color=colour, lw=1.0, label=f"{level}: total platen force")
-        ax.plot(mm, c["buoyancyShare"], color=colour, ls="--", lw=1.5, label=f"{level}: buoyancy share")
+        ax.plot(mm, c["buoyancyShare"], color=colour, ls="--", lw=1.5,
+                label=f"{level}: buoyancy share (ice below the still level)")
+        shares = vof_shares(run, c)
+        if shares:
+            ax.plot(mm, shares["levelRiseShare"], color="black", ls="-.", lw=1.5,
+                    label=f"{level}: share from the level's rise, platen included (as measured)")
+            ax.plot(mm, shares["iceShareMovingSurface"], color=colour, ls=":", lw=1.5,
+                    label=f"{level}: ice's share under the moving surface")
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("platen travel (mm)")
     ax.set_ylabel("force (N)")
-    ax.set_title(f"Rubble punch, {keel} keel: hydrostatic and cfd water")
+    ax.set_title(f"Rubble punch, {keel} keel: " + ", ".join(runs) + " water")
     ax.legend(fontsize=8)
     save_atomically(fig, out)
     plt.close(fig)
@@ -146,6 +176,14 @@ def curve_figures(run):
     fluid = fluid_force_figures(c, (20, 100))
     for name in ("drag_mean", "dynamic_pressure_mean", "dynamic_pressure_std"):
         figures[f"{name}_20_100mm_N"] = round(fluid[f"{name}_N"], 2) if fluid else ""
+    # At the vof level, the share as the experiment read it and the ice's under the moving surface.
+    shares = vof_shares(run, c)
+    for name in ("levelRiseShare", "iceShareMovingSurface"):
+        if shares:
+            c[name] = shares[name]
+        figures[f"mean_{name}_20_100mm_N"] = mean(name, 20, 100) if shares else ""
+        figures[f"{name}_100mm_N"] = mean(name, 95, 105) if shares else ""
+    figures["level_rise_mm"] = round(float(c["waterLevel"][-1] - c["waterLevel"][0]) * 1e3, 2) if shares else ""
     return figures
 
 
@@ -179,11 +217,14 @@ def main(argv=None):
     hydrostatic = {name: run for name, run in runs.items() if water_level(run) == "hydrostatic"}
     if hydrostatic:
         plot_forces(hydrostatic, os.path.join(out, "punch.png"))
-    for name, run in runs.items():
-        if water_level(run) == "cfd" and name.endswith("-cfd") and name[:-4] in hydrostatic:
-            keel = name[:-4]
-            plot_water_levels(keel, {"hydrostatic": hydrostatic[keel], "cfd": run},
-                              os.path.join(out, f"punchWater_{keel}.png"))
+    for keel, run in hydrostatic.items():
+        levels = {"hydrostatic": run}
+        for level in ("cfd", "vof"):
+            other = runs.get(f"{keel}-{level}")
+            if other and water_level(other) == level:
+                levels[level] = other
+        if len(levels) > 1:
+            plot_water_levels(keel, levels, os.path.join(out, f"punchWater_{keel}.png"))
     plot_breakage(runs, os.path.join(out, "breakage.png"))
     plot_maps(runs, os.path.join(out, "maps.png"))
     rows = [summary_row(name, run) for name, run in runs.items()]

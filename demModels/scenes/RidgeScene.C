@@ -56,9 +56,9 @@ RidgeSettings RidgeSettings::read(int argc, char** argv)
         .choice("-stage", {"assemble", "load", "all"}, "which stage to run (default all)", s.stage)
         .flag("-resume", "load: continue from the last checkpoint", s.resume)
         .parse(argc, argv);
-    // At the cfd level system/controlDict is OpenFOAM's (icePunchFoam).
-    const bool cfd = WaterProperties::readCase(s.caseDir, true).level == WaterLevel::cfd;
-    RidgeSettings fromCase = readCase(s.caseDir, cfd ? "system/loadingDict" : "system/controlDict");
+    // At the cfd and vof levels system/controlDict is OpenFOAM's (icePunchFoam, icePunchInterFoam).
+    const bool resolved = solvedByOpenFOAM(WaterProperties::readCase(s.caseDir, true).level);
+    RidgeSettings fromCase = readCase(s.caseDir, resolved ? "system/loadingDict" : "system/controlDict");
     fromCase.stage = s.stage;
     fromCase.resume = s.resume;
     return fromCase;
@@ -146,10 +146,11 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
                + s.test + " moves the layer rigidly and integrates no particle's motion, and its force is the sum "
                "of the layer's forces: there is no inertia to scale");
     }
-    if (s.loading.inertiaScaling != 1.0 && WaterProperties::readCase(s.caseDir, true).level == WaterLevel::cfd)
+    const WaterLevel level = WaterProperties::readCase(s.caseDir, true).level;
+    if (s.loading.inertiaScaling != 1.0 && solvedByOpenFOAM(level))
     {
-        t.fail("inertiaScaling", formatNumber(s.loading.inertiaScaling) + " is not allowed at the cfd level "
-               "(only 1): OpenFOAM's water exchanges momentum with the particles every coupling step and its own "
+        t.fail("inertiaScaling", formatNumber(s.loading.inertiaScaling) + " is not allowed at the "
+               + toString(level) + " level (only 1): OpenFOAM's water exchanges momentum with the particles every coupling step and its own "
                "inertia is not scaled, so the coupled dynamics would be neither the true one nor a uniformly "
                "slowed one (not validated; in still water, ridgeDEM, the added mass is scaled with the particles')");
     }
@@ -196,7 +197,7 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
 
 RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const ExternalWater* externalWater)
 :
-    context_(comm, settings.caseDir, externalWater ? "icePunchFoam" : "ridgeDEM"),
+    context_(comm, settings.caseDir, externalWater ? externalWater->application : "ridgeDEM"),
     settings_(settings),
     test_(RidgeLoadTest::New(settings_.test, settings_)),
     externalWater_(externalWater)
@@ -213,29 +214,31 @@ RidgeScene::RidgeScene(MPI_Comm comm, const RidgeSettings& settings, const Exter
     }
     water_ = WaterProperties::readCase(settings_.caseDir, true);
     const bool loads = settings_.stage == "load" || settings_.stage == "all";
-    if (externalWater_ && water_.level != WaterLevel::cfd)
+    const std::string coupling = context_.path("constant/couplingProperties");
+    const std::string level = toString(water_.level);
+    const auto loadingApplication = [](WaterLevel l) { return l == WaterLevel::vof ? "icePunchInterFoam" : "icePunchFoam"; };
+    if (externalWater_ && externalWater_->name != level)
     {
-        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
-            "'" + toString(water_.level) + "': icePunchFoam solves the water of the loading stage; "
-            "allowed here: cfd (hydrostatic: ridgeDEM)");
+        throw InputError(coupling, "waterLevel", "'" + level + "': " + externalWater_->application
+            + " solves the water of the loading stage at the " + externalWater_->name + " level; allowed here: "
+            + externalWater_->name + " (hydrostatic: ridgeDEM, cfd: icePunchFoam, vof: icePunchInterFoam)");
     }
-    if (!externalWater_ && water_.level == WaterLevel::cfd && loads)
+    if (!externalWater_ && solvedByOpenFOAM(water_.level) && loads)
     {
-        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
-            "cfd: ridgeDEM loads in still (hydrostatic) water and only assembles at the cfd level "
-            "(-stage assemble); the loading stage at the cfd level runs in icePunchFoam "
-            "(cases/rubblePunch: ./Allrun -water cfd)");
+        throw InputError(coupling, "waterLevel", level + ": ridgeDEM loads in still (hydrostatic) water and only "
+            "assembles at the " + level + " level (-stage assemble); the loading stage at the " + level
+            + " level runs in " + loadingApplication(water_.level) + " (cases/rubblePunch: ./Allrun -water " + level + ")");
     }
-    if (!externalWater_ && water_.level != WaterLevel::hydrostatic && water_.level != WaterLevel::cfd)
+    if (!externalWater_ && water_.level != WaterLevel::hydrostatic && !solvedByOpenFOAM(water_.level))
     {
-        throw InputError(context_.path("constant/couplingProperties"), "waterLevel",
-            "ridgeDEM runs in still water: allowed here: hydrostatic (cfd: icePunchFoam, see coupling/README.md)");
+        throw InputError(coupling, "waterLevel", "ridgeDEM runs in still water: allowed here: hydrostatic "
+            "(cfd: icePunchFoam, vof: icePunchInterFoam; see coupling/README.md)");
     }
-    if (water_.level == WaterLevel::cfd && !water_.hydrostatic.floatingSurface && settings_.stage != "load")
+    if (solvedByOpenFOAM(water_.level) && !water_.hydrostatic.floatingSurface && settings_.stage != "load")
     {
-        throw InputError(context_.path("constant/couplingProperties"), "hydrostatic",
-            "at the cfd level the ridge is still assembled in still water where it floats: needs "
-            "hydrostatic { surfaceLevel floating; rho; mu; } (the fluid mesh ends at that level)");
+        throw InputError(coupling, "hydrostatic", "at the " + level + " level the ridge is still assembled in still "
+            "water where it floats: needs hydrostatic { surfaceLevel floating; rho; mu; } (the level of the "
+            "fluid mesh's surface)");
     }
 }
 

@@ -249,6 +249,12 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings, const Ex
             + externalWater_->name + " water: a settling at that level starts again");
     }
     const bool settles = settings_.stage == "settle" || settings_.stage == "all";
+    if (water_.level == WaterLevel::vof)
+    {
+        throw InputError(coupling, "waterLevel", "vof: the moving free surface is built for the ridge scenes' "
+            "loading (icePunchInterFoam) only; the rubble settles at none, hydrostatic (rubbleDEM) or cfd "
+            "(iceRubbleFoam)");
+    }
     if (!externalWater_ && water_.level == WaterLevel::cfd && settles)
     {
         throw InputError(coupling, "waterLevel", "cfd: rubbleDEM settles in still (hydrostatic) water; the "

@@ -65,6 +65,8 @@ if [ "$checks" = vof ]; then
     expectRefusal cellsThinnerThanARadius "less than the largest particle's radius" \
         "system/blockMeshDict:blocks=(hex (0 1 2 3 4 5 6 7) (8 6 36) simpleGrading (1 1 1))"
     expectRefusal gravitySideways "needs gravity along -z" "constant/g:value=(0 -9.81 0)"
+    expectRefusal heaveCouplingTooLong "holds each particle's buoyancy for too long" \
+        "$props:couplingInterval=2800" "$control:deltaT=0.07"
     expectRefusal badWaveDamping "vof/waveDamping" "$props:vof/waveDamping/width=0"
     ranks=2 expectRefusal columnCutByRanks "the decomposition cuts a vertical column of cells" \
         "system/decomposeParDict:coeffs/n=(1 1 2)"

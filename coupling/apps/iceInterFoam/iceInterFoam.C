@@ -117,6 +117,7 @@ int main(int argc, char *argv[])
 
     std::vector<::iceCoupling::CouplingParticle> particles(dem.gatherAll());
     checkCellsHoldParticles(mesh, surface, couplingProperties, particles);
+    checkHeaveCoupling(couplingProperties, particles, interval, rho1.value(), mag(g.value()));
     particleFluidCoupling coupling
     (
         mesh, couplingProperties, rho1.value(), gAverage(mixture.nuModel1().nu()().primitiveField()),
@@ -173,6 +174,7 @@ int main(int argc, char *argv[])
         dem.setForces(particles, coupling.particleForces());
         output.coupling(lmp.time(), coupling, particles);
         vofLog.write(lmp.time(), alpha1, eps, waterVolume0, courant, coupling);
+        checkWaterVolume(couplingProperties, surface.waterVolume(alpha1, eps), waterVolume0, runTime);
 
         // 3. LIGGGHTS crosses it; the next exchange starts from where both are.
         dem.advance(interval.demSteps());

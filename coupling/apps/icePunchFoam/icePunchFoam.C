@@ -86,20 +86,7 @@ int main(int argc, char *argv[])
 
     const auto wallStart = std::chrono::steady_clock::now();
     const word surfaceSource("DEM/ridge.h5; postProcessing/geometry.json waterLevel");
-    const auto checkCouplingTime = [&](double demStep)
-    {
-        const scalar sampleSteps = settings.loading.sampleInterval/(settings.loading.speed*demStep);
-        if (couplingSteps > 1.5*sampleSteps)
-        {
-            FatalIOErrorInFunction(cfdProperties)
-                << "entry 'couplingInterval': " << couplingSteps << " DEM steps of " << demStep
-                << " s move the platen " << couplingSteps*demStep*settings.loading.speed*1e3
-                << " mm, more than the force's sampleInterval " << settings.loading.sampleInterval*1e3
-                << " mm (system/loadingDict): the force is sampled after whole coupling steps;"
-                << " use at most " << label(1.5*sampleSteps) << " DEM steps (one and a half samples)"
-                << exit(FatalIOError);
-        }
-    };
+    #include "punchCouplingTime.H"
     #include "sceneWater.H"
 
     Info<< "\nLoading the ridge of " << caseDir << " in water solved by OpenFOAM\n" << endl;
