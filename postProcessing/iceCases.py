@@ -481,6 +481,16 @@ def positive_number(text):
     return float(positive_text(text))
 
 
+def choice(allowed):
+    """A type: one of the names `allowed` (a water level, a keel)."""
+    def read(text):
+        if text not in allowed:
+            raise argparse.ArgumentTypeError(f"needs one of {'|'.join(allowed)}, got '{text}'")
+        return text
+    read.__name__ = "choice"
+    return read
+
+
 def comma_list(item):
     """A type: comma-separated items, each read by the type `item` (--speeds 0.2,0.1)."""
     def read(text):

@@ -14,15 +14,15 @@ scene at each level, one after the other on 1 rank, so that every level sees the
 
 Level `none` (no water): the floating block falls through, and the punch and ridge scenes are not
 defined without the water that floats the keel (ridgeDEM refuses it), so `none` has no row but its
-reason. `vof` exists for the floating block only (issue 19 item 3: the punch box at vof is not
-built yet).
+reason. Rubble settling has no `vof` level (the vof solver serves the floating block and the ridge
+scenes' loading).
 
-The windows start from the cases' own finished runs (the punch's runs/cuboid and
-runs/cuboid-cfd, the ridge's runs/default/run06... and runs/default-cfd/run06..., their saved
-ridges), copied under runs/ here; run those first (`cases/rubblePunch/Allrun [-water cfd]`,
-`cases/ridgeFlexure/Allrun -water cfd`). Cost per simulated second: the loading or settling
-loop's own particle-steps/s where the application reports it (set-up excluded), the wall clock
-of the whole run for the floating block.
+The windows start from the cases' own finished runs (the punch's runs/cuboid, runs/cuboid-cfd and
+runs/cuboid-vof, the ridge's runs/default/run06..., runs/default-cfd/run06... and
+runs/default-vof/run06..., their saved ridges), copied under runs/ here; run those first
+(`cases/rubblePunch/Allrun [-water cfd|vof]`, `cases/ridgeFlexure/Allrun -water cfd|vof`). Cost
+per simulated second: the loading or settling loop's own particle-steps/s where the application
+reports it (set-up excluded), the wall clock of the whole run for the floating block.
 
 usage: waterLevelChart.py [--out DIR] [--publish]
   writes OUT/waterLevels.{csv,md,png} (default runs/); --publish: into results/ and the table into
@@ -51,12 +51,6 @@ NONE_REASON = {"floating block": "no buoyancy: the block falls to the floor",
                "rubble settling": "no buoyancy: the blocks pile on the floor, no floating keel",
                "rubble punch": "not defined: the keel floats (ridgeDEM refuses waterLevel none)",
                "ridge run 6": "not defined: the keel floats (ridgeDEM refuses waterLevel none)"}
-
-
-# Floating scenes whose vof level is asked for and not built (issue 19 item 3; the ridge: physics.md
-# section 6, its layer floats half in air).
-VOF_TO_BUILD = {"rubble punch": "not built yet: the punch box at vof (issue 19 item 3)",
-                "ridge run 6": "not built yet (the punch's vof solver would serve it)"}
 
 
 def load(path):
@@ -91,10 +85,12 @@ def punch_answers():
     rows = {}
     table = {r["run"]: r for r in read_csv(os.path.join(CASES, "rubblePunch", "results", "punchSummary.csv"))}
     base = float(table["cuboid"]["mean_force_20_100mm_N"])
-    for level, run in (("hydrostatic", "cuboid"), ("cfd", "cuboid-cfd")):
+    for level, run in (("hydrostatic", "cuboid"), ("cfd", "cuboid-cfd"), ("vof", "cuboid-vof")):
         r = table[run]
         mean = float(r["mean_force_20_100mm_N"])
-        noise = f", pressure noise {float(r['dynamic_pressure_std_20_100mm_N']):.0f} N" if level == "cfd" else ""
+        noise = f", pressure noise {float(r['dynamic_pressure_std_20_100mm_N']):.0f} N" if level != "hydrostatic" else ""
+        if level == "vof":
+            noise += f", level rise {float(r['level_rise_mm']):.1f} mm"
         rows[level] = {"answer": f"mean force 20-100 mm {mean:.0f} N, peak {float(r['peak_force_N']):.0f} N{noise}",
                        "check": "hydrostatic level's mean force",
                        "error": "reference" if level == "hydrostatic" else mean / base - 1,
@@ -109,7 +105,7 @@ def ridge_answers():
     base = next(float(r["failure_force_kN"]) for r in table if r["water"] == "hydrostatic")
     for r in table:
         force = float(r["failure_force_kN"])
-        noise = f", pressure noise {float(r['dynamic_pressure_std_N']):.0f} N" if r["water"] == "cfd" else ""
+        noise = f", pressure noise {float(r['dynamic_pressure_std_N']):.0f} N" if r["water"] != "hydrostatic" else ""
         rows[r["water"]] = {"answer": f"failure force {force:.2f} kN{noise}",
                             "check": "hydrostatic level's failure force",
                             "error": "reference" if r["water"] == "hydrostatic" else force / base - 1,
@@ -173,32 +169,37 @@ def loading_cost(work, name, source, level, travel=0.002, ranks=1):
     if not iceCases.finished(source):
         raise RuntimeError(f"{source} has not finished: run its case first")
     case = copy_run(source, os.path.join(work, f"{name}-{level}" + (f"-np{ranks}" if ranks > 1 else "")))
-    control = os.path.join(case, "system", "loadingDict" if level == "cfd" else "controlDict")
+    control = os.path.join(case, "system", "controlDict" if level == "hydrostatic" else "loadingDict")
     iceCases.set_entry(control, "maxTravel", travel)
     iceCases.set_entry(control, "rampTravel", travel / 2)   # the smooth start within the window
     if cfdRun.has_entry(control, "minTravel"):
         iceCases.set_entry(control, "minTravel", 0)
     os.makedirs(os.path.join(case, "postProcessing"), exist_ok=True)
-    if level == "cfd":
+    if level != "hydrostatic":
         if ranks > 1:
-            raise ValueError("the cfd windows run on 1 rank (their meshes are not decomposed here)")
-        iceCases.run_app(os.path.join(iceCases.BUILD, "coupling", "icePunchFoam"), case, 1, [], "log.run")
+            raise ValueError(f"the {level} windows run on 1 rank (their meshes are not decomposed here)")
+        app = {"cfd": "icePunchFoam", "vof": "icePunchInterFoam"}[level]
+        iceCases.run_app(os.path.join(iceCases.BUILD, "coupling", app), case, 1, [], "log.run")
     else:
         iceCases.run_app("ridgeDEM", case, ranks, ["-stage", "load"], "log.run")
     s = iceCases.summary(case)
     return s["particles"] / s["particle_steps_per_s"] / s["dt"], "loading loop"
 
 
+def level_suffix(level):
+    """A case's run folder of a water level: runs/<name> (hydrostatic), runs/<name>-cfd, -vof."""
+    return "" if level == "hydrostatic" else "-" + level
+
+
 SCENES = [
     ("floating block", floating_block_answers, ("hydrostatic", "cfd", "vof"), floating_block_cost),
     ("rubble settling", settling_answers, ("hydrostatic", "cfd"), settling_cost),
-    ("rubble punch", punch_answers, ("hydrostatic", "cfd"),
+    ("rubble punch", punch_answers, ("hydrostatic", "cfd", "vof"),
      lambda work, level: loading_cost(work, "punch", os.path.join(CASES, "rubblePunch", "runs",
-                                                                  "cuboid" + ("-cfd" if level == "cfd" else "")), level)),
-    ("ridge run 6", ridge_answers, ("hydrostatic", "cfd"),
+                                                                  "cuboid" + level_suffix(level)), level)),
+    ("ridge run 6", ridge_answers, ("hydrostatic", "cfd", "vof"),
      lambda work, level: loading_cost(work, "ridge", os.path.join(CASES, "ridgeFlexure", "runs",
-                                                                  "default" + ("-cfd" if level == "cfd" else ""),
-                                                                  RIDGE_RUN), level)),
+                                                                  "default" + level_suffix(level), RIDGE_RUN), level)),
 ]
 
 
@@ -213,9 +214,6 @@ def measure(work):
             seconds, what = cost(work, level)
             rows.append({"scene": scene, "level": level, **found[level],
                          "wall_per_simulated_s": round(seconds, 3), "timed": what})
-        if scene in VOF_TO_BUILD:
-            rows.append({"scene": scene, "level": "vof", "answer": VOF_TO_BUILD[scene], "check": "", "error": "",
-                         "wall_per_simulated_s": "", "timed": "", "source": ""})
     return rows
 
 
