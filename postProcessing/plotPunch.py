@@ -10,6 +10,9 @@ Writes to CASE/postProcessing/, each file atomically:
                    and buoyancy share; at vof also the share as the experiment read it, rho_w g
                    times the box's area times the level's rise plus the platen's own displaced
                    water (everything pushed under), and the ice's share under the moving surface;
+  punchVof_<keel>.png  a keel at the vof level (run <keel>-vof): force, the buoyancy share as the
+                   experiment read it (level's rise, platen included), the ice's share under the
+                   moving surface and the share below the still level, and the level's rise;
   breakage.png     broken bonds against time by mode, one panel per keel;
   maps.png         the failure analysis's maps (runs/<keel>/postProcessing/failureAnalysis/
                    moment_*.png) at half load before the peak, the peak and half load after it;
@@ -21,7 +24,10 @@ Writes to CASE/postProcessing/, each file atomically:
                    the level's rise at the end, broken bonds by mode and family, wall time,
                    particle-steps/s.
 
-usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd cuboid-vof]"""
+usage: plotPunch.py CASE [--runs cuboid empirical cuboid-cfd cuboid-vof]
+       plotPunch.py CASE --merge-into results/punchSummary.csv
+         (writes postProcessing/punchSummary.merged.csv: that table with this run's rows replaced
+         or added, so that publishing one water level keeps the others' rows)"""
 import argparse
 import csv
 import io
@@ -94,6 +100,47 @@ def plot_water_levels(keel, runs, out):
     ax.legend(fontsize=8)
     save_atomically(fig, out)
     plt.close(fig)
+
+
+def plot_vof(keel, run, out):
+    """A keel at the vof level: the platen force and the buoyancy share three ways, and the
+    level's rise (right axis)."""
+    c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
+    shares = vof_shares(run, c)
+    mm = c["travel"] * 1e3
+    fig, ax = plt.subplots(figsize=(8, 5))
+    ax.plot(mm, c["force"], color="tab:green", lw=1.0, label="total platen force")
+    ax.plot(mm, shares["levelRiseShare"], color="black", ls="-.", lw=1.5,
+            label="buoyancy share from the level's rise, platen included (as the experiment)")
+    ax.plot(mm, shares["iceShareMovingSurface"], color="tab:green", ls=":", lw=1.5,
+            label="ice's share under the moving surface")
+    ax.plot(mm, c["buoyancyShare"], color="tab:green", ls="--", lw=1.2, label="ice's share below the still level")
+    ax.axhline(0, color="grey", lw=0.5)
+    ax.set_xlabel("platen travel (mm)")
+    ax.set_ylabel("force (N)")
+    rise = ax.twinx()
+    rise.plot(mm, (c["waterLevel"] - c["waterLevel"][0]) * 1e3, color="tab:blue", lw=0.8, alpha=0.6)
+    rise.set_ylabel("water level's rise (mm)", color="tab:blue")
+    ax.set_title(f"Rubble punch, {keel} keel, vof level: water and air, a moving surface")
+    ax.legend(fontsize=8, loc="upper left")
+    save_atomically(fig, out)
+    plt.close(fig)
+
+
+def merge_summary(table, rows_text, out):
+    """The published table with these rows replaced (same run) or added, columns united."""
+    rows = list(csv.DictReader(io.StringIO(rows_text)))
+    old = list(csv.DictReader(open(table, newline=""))) if os.path.exists(table) else []
+    mine = {r["run"] for r in rows}
+    merged = [r for r in old if r["run"] not in mine] + rows
+    order = {name: i for i, name in enumerate(r["run"] for r in old)}
+    merged.sort(key=lambda r: order.get(r["run"], len(order)))
+    fields = list(dict.fromkeys([f for r in old[:1] for f in r] + [f for r in rows[:1] for f in r]))
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=fields, lineterminator="\n", restval="")
+    writer.writeheader()
+    writer.writerows(merged)
+    write_atomically(out, text.getvalue())
 
 
 def plot_forces(runs, out):
@@ -207,8 +254,13 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("case")
     ap.add_argument("--runs", nargs="+", default=["cuboid", "empirical"])
+    ap.add_argument("--merge-into", metavar="TABLE")
     a = ap.parse_args(argv)
     out = os.path.join(a.case, "postProcessing")
+    if a.merge_into:
+        merge_summary(a.merge_into, open(os.path.join(out, "punchSummary.csv")).read(),
+                      os.path.join(out, "punchSummary.merged.csv"))
+        return
     os.makedirs(out, exist_ok=True)
     runs = {name: os.path.join(a.case, "runs", name) for name in a.runs
             if finished(os.path.join(a.case, "runs", name))}
@@ -225,6 +277,9 @@ def main(argv=None):
                 levels[level] = other
         if len(levels) > 1:
             plot_water_levels(keel, levels, os.path.join(out, f"punchWater_{keel}.png"))
+    for name, run in runs.items():
+        if name.endswith("-vof") and water_level(run) == "vof":
+            plot_vof(name[:-4], run, os.path.join(out, f"punchVof_{name[:-4]}.png"))
     plot_breakage(runs, os.path.join(out, "breakage.png"))
     plot_maps(runs, os.path.join(out, "maps.png"))
     rows = [summary_row(name, run) for name, run in runs.items()]

@@ -2,7 +2,8 @@
 """The README's tables of the published punches, written from results/summary_<keel>.json,
 results/beamPhase_<keel>.json and results/punchSummary.csv (./Allrun -publish calls it), so that the
 figures a reader sees are those of the published runs: the hydrostatic punches ("punch table"), and
-each keel at both water levels where both are published ("punch water table").
+each keel at the hydrostatic level beside the cfd and vof levels where those are published
+("punch water table").
 
 usage: resultsTable.py [CASE_DIR]"""
 import csv
@@ -68,14 +69,14 @@ def table(case):
 
 
 def water_table(case):
-    """Each keel at the hydrostatic and the cfd level, side by side, from results/punchSummary.csv;
-    None when no keel has both levels published."""
+    """Each keel at the hydrostatic level and the cfd and vof levels published, side by side, from
+    results/punchSummary.csv; None when no keel has a resolved level published."""
     with open(os.path.join(case, "results", "punchSummary.csv"), newline="") as handle:
         rows = {r["run"]: r for r in csv.DictReader(handle)}
-    keels = [k for k in KEELS if k in rows and f"{k}-cfd" in rows]
-    if not keels:
+    names = [n for k in KEELS if k in rows and (f"{k}-cfd" in rows or f"{k}-vof" in rows)
+             for n in (k, f"{k}-cfd", f"{k}-vof") if n in rows]
+    if not names:
         return None
-    names = [n for k in keels for n in (k, f"{k}-cfd")]
     lines = ["| | " + " | ".join(f"{rows[n]['run'].split('-')[0]} {rows[n]['water']}" for n in names) + " |",
              "|---|" + "---|" * len(names)]
 
@@ -98,6 +99,13 @@ def water_table(case):
     row("pressure force less buoyancy over 20-100 mm: mean / standard deviation",
         lambda r: f"{number(r, 'dynamic_pressure_mean_20_100mm_N'):.1f} / {number(r, 'dynamic_pressure_std_20_100mm_N'):.1f} N"
         if r.get("dynamic_pressure_mean_20_100mm_N") else "-")
+    row("vof: buoyancy share from the level's rise, platen included: mean over 20-100 mm / at 100 mm",
+        lambda r: f"{number(r, 'mean_levelRiseShare_20_100mm_N'):.0f} / {number(r, 'levelRiseShare_100mm_N'):.0f} N"
+        if r.get("mean_levelRiseShare_20_100mm_N") else "-")
+    row("vof: the ice's share under the moving surface: mean over 20-100 mm / at 100 mm",
+        lambda r: f"{number(r, 'mean_iceShareMovingSurface_20_100mm_N'):.0f} / {number(r, 'iceShareMovingSurface_100mm_N'):.0f} N"
+        if r.get("mean_iceShareMovingSurface_20_100mm_N") else "-")
+    row("vof: the level's rise at the end", lambda r: f"{number(r, 'level_rise_mm'):.1f} mm" if r.get("level_rise_mm") else "-")
     row("broken freeze-bonds at 100 mm: tension / shear / twist / bending",
         lambda r: " / ".join(r[f"broken_{m}"] for m in ("tension", "shear", "twist", "bending")))
     row("wall time, 1 rank (particle-steps/s)",
