@@ -144,19 +144,7 @@ int main(int argc, char *argv[])
         courantNumbers courant;
         for (label sub = 0; sub < interval.fluidSteps(); ++sub)
         {
-            ++runTime;
-            Info<< "Time = " << runTime.timeName() << nl << endl;
-            eps = coupling.alpha();
-            epsRho = eps*rho;
-            #include "UEqn.H"
-            while (piso.correct())
-            {
-                #include "pEqn.H"
-            }
-            #include "alphaEqn.H"
-            courant.update(mesh, phi, eps, mixture);
-            limits.check(courant, runTime);
-            runTime.write();
+            #include "vofFluidStep.H"
             runTime.printExecutionTime(Info);
         }
 

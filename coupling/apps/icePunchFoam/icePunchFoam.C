@@ -78,29 +78,11 @@ int main(int argc, char *argv[])
     #include "createFields.H"
 
     #include "couplingSteps.H"
-    const fileName caseDir(runTime.globalPath());
+    #include "readRidgeSettings.H"
 
-    iceDEM::RidgeSettings settings;
-    demModelsAction([&]() { settings = iceDEM::RidgeSettings::readCase(caseDir, "system/loadingDict"); });
-    settings.stage = "load";
-
-    const auto wallStart = std::chrono::steady_clock::now();
     const word surfaceSource("DEM/ridge.h5; postProcessing/geometry.json waterLevel");
     #include "punchCouplingTime.H"
     #include "sceneWater.H"
-
-    Info<< "\nLoading the ridge of " << caseDir << " in water solved by OpenFOAM\n" << endl;
-    demModelsAction([&]()
-    {
-        // The bond model's unused lanes compute 0/0 (FpeTrapsOff.H); the fluid
-        // runs under the same guard, its fields' health shows in the forces.
-        const ::iceCoupling::FpeTrapsOff untrapped;
-        iceDEM::RidgeScene scene(MPI_COMM_WORLD, settings, &water);
-        scene.run();
-    });
-    runTime.writeNow();
-
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    Info<< "icePunchFoam: " << wall << " s wall clock" << nl << "End\n" << endl;
+    #include "loadRidge.H"
     return 0;
 }

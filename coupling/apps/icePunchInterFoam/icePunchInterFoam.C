@@ -88,32 +88,14 @@ int main(int argc, char *argv[])
     const word hydrostaticApplication("ridgeDEM");
     #include "createFields.H"
     #include "couplingSteps.H"
-    const fileName caseDir(runTime.globalPath());
-
-    iceDEM::RidgeSettings settings;
-    demModelsAction([&]() { settings = iceDEM::RidgeSettings::readCase(caseDir, "system/loadingDict"); });
-    settings.stage = "load";
+    #include "readRidgeSettings.H"
 
     const freeSurface surface(mesh);
     const courantLimits limits(runTime.controlDict(), levelProperties);
     const volScalarField waveDamping(waveDampingRate(mesh, vofProperties));
 
-    const auto wallStart = std::chrono::steady_clock::now();
     #include "punchCouplingTime.H"
     #include "sceneWaterVof.H"
-
-    Info<< "\nLoading the ridge of " << caseDir << " in water and air solved by OpenFOAM (vof)\n" << endl;
-    demModelsAction([&]()
-    {
-        // The bond model's unused lanes compute 0/0 (FpeTrapsOff.H); the fluid
-        // runs under the same guard, its fields' health shows in the forces.
-        const ::iceCoupling::FpeTrapsOff untrapped;
-        iceDEM::RidgeScene scene(MPI_COMM_WORLD, settings, &water);
-        scene.run();
-    });
-    runTime.writeNow();
-
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    Info<< "icePunchInterFoam: " << wall << " s wall clock" << nl << "End\n" << endl;
+    #include "loadRidge.H"
     return 0;
 }
