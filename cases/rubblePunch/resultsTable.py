@@ -34,7 +34,7 @@ def table(case):
     with open(os.path.join(case, "results", "punchSummary.csv"), newline="") as handle:
         means = {r["run"]: r for r in csv.DictReader(handle)}
     for keel in runs:
-        runs[keel][0] = dict(runs[keel][0], **{k: float(v) for k, v in means[keel].items() if k.startswith("mean_")})
+        runs[keel][0] = dict(runs[keel][0], **{k: float(v) for k, v in means[keel].items() if k.startswith("mean_") and v != ""})
     keels = list(runs)
     lines = ["| | " + " | ".join(keels) + " |", "|---|" + "---|" * len(keels)]
 
