@@ -91,12 +91,8 @@ int main(int argc, char *argv[])
         }
         if (runTime.timeName() == "0")   // a run from a later time keeps its alpha.water
         {
-            surface.setLevel(alpha1, level);
-            alpha2 = 1.0 - alpha1;
-            mixture.correct();
-            rho == alpha1*rho1 + alpha2*rho2;
-            rhoPhi = fvc::interpolate(rho)*phi;
-            p = p_rgh + rho*gh;
+            const scalar stillLevel = level;
+            #include "setStillWater.H"
         }
     }
     const volScalarField waveDamping(waveDampingRate(mesh, vofProperties));
