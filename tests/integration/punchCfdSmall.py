@@ -203,7 +203,7 @@ def punch(work, dem_bin, cfd_bin, water):
 # level's rise is the ice under water as the cells hold it, sum alpha.water (1 - eps) V, which
 # VOF conserves. The cells place the ice against the surface to their resolution only (vertical
 # sharing over 4 cm cells), so the rise follows the caps' submergence with a lag: measured on
-# this keel, 0.79 of it at 30 mm of travel, 0.27 with the cfd level's 0.3 m smoothing.
+# this keel, 0.78 of it at 30 mm of travel, 0.27 with the cfd level's 0.3 m smoothing.
 VOLUME_LIMIT = 1e-10
 RISE_SHARE_LOW = 0.5
 
