@@ -97,10 +97,51 @@ def command(study, point):
     return [study.application, "-np", str(study.ranks)] + args
 
 
+def expand(study, knob, values):
+    """The value a knob writes into its entry: its template with ${knob} and ${STUDY} filled in
+    (an absolute path where it starts with ${STUDY}), or the knob's value itself."""
+    if knob.template is None:
+        return values[knob.name]
+    return re.sub(r"\$\{(\w+)\}", lambda m: study.folder if m.group(1) == "STUDY" else values[m.group(1)],
+                  knob.template)
+
+
+_UPSTREAM_HASHES = {}
+
+
+def upstream_files(study, point):
+    """{path: sha256} of the saved stages a point reads by a templated path (a keel): a changed
+    file makes the point again. A file that is not there yet is recorded as missing."""
+    out = {}
+    for k in study.knobs:
+        if k.template is not None and "${STUDY}" in k.template:
+            path = expand(study, k, point.values)
+            rel = os.path.relpath(path, study.folder)
+            if path not in _UPSTREAM_HASHES:
+                _UPSTREAM_HASHES[path] = _hash_file(path) if os.path.isfile(path) else "missing"
+            out[rel] = _UPSTREAM_HASHES[path]
+    return out
+
+
+def with_entries(study, point):
+    """The entries the knobs' `with` blocks set beside the point's values."""
+    return [e for k in study.knobs for e in k.with_entries.get(point.values[k.name], [])]
+
+
 def made_from(study, point, inputs):
-    """The fingerprint of what makes a point: knob values, command, fixed entries, the case's inputs."""
+    """The fingerprint of what makes a point: knob values, command, fixed entries, the case's inputs,
+    the post-processing and the files the point reads by a templated path."""
     record = {"knobs": point.values, "command": command(study, point),
-              "set": [list(map(str, f)) for f in study.fixed], "inputs": inputs}
+              "set": [list(map(str, f)) for f in study.fixed + with_entries(study, point)], "inputs": inputs}
+    if study.post_process:
+        record["postProcess"] = study.post_process
+    upstream = upstream_files(study, point)
+    for file, dotted, value, _ in study.fixed + with_entries(study, point):
+        if dotted == "#include":   # the generated dictionary a point includes: its content
+            path = os.path.normpath(os.path.join(study.case, os.path.dirname(file), value))
+            upstream[os.path.relpath(path, iceCases.TOP)] = _hash_file(path) if os.path.isfile(path) else "missing"
+    if upstream:
+        record["upstream"] = upstream
     return hashlib.sha256(json.dumps(record, sort_keys=True).encode()).hexdigest()
 
 
@@ -191,17 +232,23 @@ class Runner:
     # -- running one point
     def prepare(self, p):
         case = iceCases.copy_case(self.study.case, os.path.join(self.folder(p), self.study.case_name))
-        for file, dotted, value, create in self.study.fixed:
+        for file, dotted, value, create in self.study.fixed + with_entries(self.study, p):
             self._set(case, file, dotted, value, create)
         for k in self.study.knobs:
             if k.file:   # a path (keels/keel0.5/DEM/compacted.h5) is written as a string
-                value = p.values[k.name]
+                value = expand(self.study, k, p.values)
+                if os.path.isabs(value):   # ${STUDY}/...: relative to the point's case, as a case's own paths
+                    value = os.path.relpath(value, case)
                 self._set(case, k.file, k.dotted, f'"{value}"' if "/" in value else value, k.create)
         return case
 
     @staticmethod
     def _set(case, file, dotted, value, create):
         path = os.path.join(case, file)
+        if dotted == "#include":   # after the file's own entries: what it includes overrides them
+            text = open(path).read()
+            iceCases.write_atomically(path, text.rstrip("\n") + f'\n\n#include "{value}"\n')
+            return
         try:
             iceCases.set_entry(path, dotted, value)
         except KeyError:
@@ -271,10 +318,17 @@ class Runner:
         p.state["git_revision"] = self.revision
         p.state["finished_at"] = _now()
         p.state.pop("error", None)
-        if proc.returncode == 0 and iceCases.finished(case):
+        post_error = None
+        if proc.returncode == 0 and iceCases.finished(case) and self.study.post_process and not self.stopping:
+            post_error = self.post_process(p, case)
+            p.state["wall_s"] = time.time() - start + p.state["wall_s"] - wall
+        if proc.returncode == 0 and iceCases.finished(case) and post_error is None:
             p.state["status"] = "done"
             with self.lock:
                 self.run_walls.append(p.state["wall_s"])
+        elif post_error is not None and not self.stopping:
+            p.state["status"] = "failed"
+            p.state["error"] = post_error
         elif self.stopping:
             p.state["status"] = "killed"
         else:
@@ -286,6 +340,17 @@ class Runner:
         self.save_state(p)
         return p
 
+    def post_process(self, p, case):
+        """Runs the study's postProcess on the finished point; None, or the failure's message."""
+        script, *extra = self.study.post_process
+        log = os.path.join(self.folder(p), "log.postProcess")
+        with open(log, "w") as out:
+            result = subprocess.run([sys.executable, os.path.join(iceCases.TOP, script)] + extra + [case],
+                                    stdout=out, stderr=subprocess.STDOUT)
+        if result.returncode == 0:
+            return None
+        return f"postProcess {script} exit {result.returncode}: " + error_tail(log)
+
     # -- the table
     def figures(self, p):
         if p.state.get("status") != "done":
@@ -296,10 +361,24 @@ class Runner:
         except (OSError, ValueError):
             return {}
         p.summary = summary
+        others = {}
         out = {}
         for name, key in self.study.figures:
-            v = _dig(summary, key)
-            out[name] = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else float("nan")
+            data = summary
+            if ":" in key:   # file.json:dotted, another file of the point's postProcessing/
+                file, key = key.split(":", 1)
+                if file not in others:
+                    try:
+                        others[file] = json.load(open(os.path.join(self.folder(p), self.study.case_name,
+                                                                   "postProcessing", file)))
+                    except (OSError, ValueError):
+                        others[file] = {}
+                data = others[file]
+            v = _dig(data, key)
+            if isinstance(v, str):   # a text figure (a failure mode): kept as it is, no error
+                out[name] = v
+            else:
+                out[name] = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else float("nan")
         return out
 
     def reference_point(self, p):
@@ -331,6 +410,8 @@ class Runner:
             row["status"] = p.state.get("status", "pending") if p.state.get("madeFrom") == p.fingerprint else "pending"
             if self.study.reference_type == "measured":
                 ref, ref_label = self.study.reference, "measured: " + self.study.reference_source
+            elif self.study.reference_type == "none":
+                ref, ref_label = {}, "none"
             else:
                 rp = self.reference_point(p)
                 ref, ref_label = figs[rp.label], rp.label
@@ -338,7 +419,8 @@ class Runner:
                 v = figs[p.label].get(name, float("nan"))
                 r = ref.get(name, float("nan"))
                 row[name] = v
-                row[name + "_error"] = (v - r) / r if r == r and r != 0 and v == v else float("nan")
+                numeric = isinstance(v, float) and isinstance(r, float)
+                row[name + "_error"] = (v - r) / r if numeric and r == r and r != 0 and v == v else float("nan")
             row["reference"] = ref_label
             row["is_reference"] = int(self.study.reference_type == "finest" and self.reference_point(p) is p)
             row["is_case_default"] = int(self.is_case_default(p))
@@ -475,8 +557,10 @@ class Runner:
         over the points run so far (the mean of their walls until there are enough of them)."""
         import numpy as np
         ran = [q for q in self.points if q.state.get("status") == "done" and q.state.get("wall_s")]
+        # a knob the finished points do not vary yet says nothing about the others' walls
         knobs = [k for k in self.study.knobs if all(studyDict._number(v) and studyDict._number(v) > 0
-                                                     for v in k.values)]
+                                                     for v in k.values)
+                 and len({q.values[k.name] for q in ran}) > 1]
         if len(ran) < len(knobs) + 2:
             return sum(self.run_walls) / len(self.run_walls)
 
@@ -491,7 +575,8 @@ class Runner:
         figs = ""
         if s == "done":
             f = self.figures(p)
-            figs = ", ".join(f"{n} {f[n]:.4g}" for n, _ in self.study.figures)
+            figs = ", ".join(f"{n} {f[n]:.4g}" if isinstance(f[n], float) else f"{n} {f[n]}"
+                             for n, _ in self.study.figures)
         elif s == "failed":
             figs = p.state.get("error", "")
         walls = self.run_walls
@@ -526,6 +611,11 @@ def main(argv):
         study = studyDict.read_study(args.study)
     except studyDict.StudyDictError as e:
         print(f"runStudy: {e}", file=sys.stderr)
+        return 1
+    missing = studyDict.missing_includes(study)
+    if missing and not (args.list or args.plot):
+        for e in missing:
+            print(f"runStudy: {e}", file=sys.stderr)
         return 1
     if args.bin:
         study.app = os.path.join(os.path.abspath(args.bin), study.application)

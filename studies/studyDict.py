@@ -207,6 +207,8 @@ class Knob:
         self.quick = None
         self.case_value = None  # the case's own value (text), or None
         self.finer = None       # 'larger' | 'smaller' | None
+        self.template = None    # the entry's value made from the knobs' values ("${name}"), or None
+        self.with_entries = {}  # value -> [(file, dotted, value, create)] set beside that value
 
     def where(self):
         return f"{self.file}:{self.dotted}" if self.file else self.option
@@ -240,6 +242,36 @@ def _split_entry(d, key, spec):
     return file, dotted
 
 
+def _fixed_entries(sd, s):
+    """The entries of a `set` block (or a knob's `with` block): [(file, dotted, value, create)]."""
+    fixed = []
+    for key in sd.keys():
+        if key.endswith(":#include"):   # "file:#include" "../../common/chain/x": an #include appended to file
+            file = key[:-len(":#include")]
+            included = os.path.normpath(os.path.join(s.case, os.path.dirname(file), sd.word(key)))
+            if not os.path.isfile(os.path.join(s.case, file)):
+                raise sd.error(key, f"the case has no file {file}")
+            # a generated dictionary may not be there yet (the runner refuses to start without it)
+            s.includes.append((sd, key, included))
+            fixed.append((file, "#include", sd.word(key), False))
+            continue
+        file, dotted = _split_entry(sd, key, key)
+        e = sd.entries[key]
+        if e.kind == "dict":
+            sub = e.value
+            sub.check_keys({"value", "create"})
+            value, create = sub.word("value"), sub.word("create", default="no", allowed=("yes", "no")) == "yes"
+        else:
+            value, create = sd.word(key), False
+        if not os.path.isfile(os.path.join(s.case, file)):
+            raise sd.error(key, f"the case has no file {file}")
+        if _case_value(s.case, file, dotted) is None and not create:
+            raise sd.error(key, f"{dotted} is not in {s.case_name}/{file} (write "
+                                f"'\"{key}\" {{ value {value}; create yes; }}' if it may be added)")
+        fixed.append((file, dotted, value, create))
+    return fixed
+
+
 def _case_value(case, file, dotted):
     try:
         return iceCases.get_entry(os.path.join(case, file), dotted).strip()
@@ -268,7 +300,7 @@ def read_study(path):
     s.folder = os.path.dirname(path)
 
     st = top.subdict("study")
-    st.check_keys({"case", "application", "ranks", "arguments", "description"})
+    st.check_keys({"case", "application", "ranks", "arguments", "description", "postProcess"})
     case = st.word("case")
     candidates = [os.path.join(s.folder, case), os.path.join(TOP, "cases", case)] if not os.path.isabs(case) else [case]
     found = [c for c in candidates if os.path.isfile(os.path.join(c, "Allrun"))]
@@ -283,15 +315,23 @@ def read_study(path):
     s.ranks = st.number("ranks", default=1, whole=True, positive=True)
     s.arguments = st.items("arguments") if st.found("arguments") else []
     s.description = st.word("description", default="")
+    s.post_process = st.items("postProcess") if st.found("postProcess") else []
+    if s.post_process:
+        script = os.path.join(TOP, s.post_process[0])
+        if not os.path.isfile(script) or os.path.isabs(s.post_process[0]):
+            raise st.error("postProcess", f"needs a script of this checkout first (e.g. postProcessing/"
+                                          f"failureAnalysis.py), got '{s.post_process[0]}'")
 
     kd = top.subdict("knobs")
     if not kd.keys():
         raise StudyDictError(path, kd.line, "knobs", "needs at least one knob")
     s.knobs = []
+    s.includes = []   # (block, key, path) of every "file:#include" entry: checked by missing_includes
     for name in kd.keys():
         _check_name(kd, name, "knob", [k.name for k in s.knobs])
         d = kd.subdict(name)
-        d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create"})
+        d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create", "template",
+                      "with"})
         knob = Knob(name)
         if d.found("entry") == d.found("option"):
             raise StudyDictError(path, d.line, d.path, "needs one of 'entry file:dotted.path;' or 'option -name;'")
@@ -310,6 +350,10 @@ def read_study(path):
                 raise d.error("option", f"needs an option such as -particles, got '{knob.option}'")
             if d.found("create"):
                 raise d.error("create", "only for an 'entry' knob")
+            if d.found("template"):
+                raise d.error("template", "only for an 'entry' knob")
+        if d.found("template"):
+            knob.template = d.word("template")
         if d.found("caseEntry"):
             file, dotted = _split_entry(d, "caseEntry", d.word("caseEntry"))
             knob.case_value = _case_value(s.case, file, dotted)
@@ -346,26 +390,27 @@ def read_study(path):
             bad = [v for v in knob.values if _number(v) is None]
             if bad:
                 raise d.error("finer", f"needs numeric values, got {', '.join(bad)}")
+        if d.found("with"):
+            wd = d.subdict("with")
+            for value in wd.keys():
+                if value not in knob.values:
+                    raise wd.error(value, f"'{value}' is not among the values ({', '.join(knob.values)})")
+                knob.with_entries[value] = _fixed_entries(wd.subdict(value), s)
         s.knobs.append(knob)
 
-    s.fixed = []   # (file, dotted, value, create)
-    if top.found("set"):
-        sd = top.subdict("set")
-        for key in sd.keys():
-            file, dotted = _split_entry(sd, key, key)
-            e = sd.entries[key]
-            if e.kind == "dict":
-                sub = e.value
-                sub.check_keys({"value", "create"})
-                value, create = sub.word("value"), sub.word("create", default="no", allowed=("yes", "no")) == "yes"
-            else:
-                value, create = sd.word(key), False
-            if not os.path.isfile(os.path.join(s.case, file)):
-                raise sd.error(key, f"the case has no file {file}")
-            if _case_value(s.case, file, dotted) is None and not create:
-                raise sd.error(key, f"{dotted} is not in {s.case_name}/{file} (write "
-                                    f"'\"{key}\" {{ value {value}; create yes; }}' if it may be added)")
-            s.fixed.append((file, dotted, value, create))
+    names = [k.name for k in s.knobs]
+    for knob in s.knobs:
+        if knob.template is not None:
+            for ref in re.findall(r"\$\{([^}]*)\}", knob.template):
+                if ref not in names and ref != "STUDY":
+                    raise kd.subdict(knob.name).error(
+                        "template", f"'${{{ref}}}' names no knob (knobs: {', '.join(names)}; or STUDY, this "
+                                    "study's folder)")
+            if "$" in re.sub(r"\$\{[^}]*\}", "", knob.template):
+                raise kd.subdict(knob.name).error("template", "a '$' only as ${knob} or ${STUDY}")
+
+    s.fixed = _fixed_entries(top.subdict("set"), s) if top.found("set") else []
+    # the knobs' `with` blocks were read before `set`: their includes are in s.includes too
 
     fd = top.subdict("figures")
     if not fd.keys():
@@ -379,12 +424,13 @@ def read_study(path):
             key = e.value.word("key")
         else:
             key = fd.word(name)
-        if not re.fullmatch(r"[\w.]+", key):
-            raise fd.error(name, f"needs a dotted key of summary.json, got '{key}'")
+        if not re.fullmatch(r"([\w./]+\.json:)?[\w.]+", key) or ".." in key.split(":")[0].split("/"):
+            raise fd.error(name, f"needs a dotted key of summary.json, or file.json:dotted.key of another "
+                                 f"file under the point's postProcessing/, got '{key}'")
         s.figures.append((name, key))
 
     rd = top.subdict("reference")
-    s.reference_type = rd.word("type", allowed=("measured", "finest"))
+    s.reference_type = rd.word("type", allowed=("measured", "finest", "none"))
     if s.reference_type == "measured":
         rd.check_keys({"type", "values", "file", "quantities", "source"})
         s.reference_source = rd.word("source", default="")
@@ -415,11 +461,20 @@ def read_study(path):
                 raise StudyDictError(path, rd.line, "reference", f"'{name}' is no figure (figures: {', '.join(names)})")
         if not s.reference:
             raise StudyDictError(path, rd.line, "reference", "a measured reference needs 'values { ... }' or 'file'")
+    elif s.reference_type == "none":   # a map, not a convergence study: no error columns to fill
+        rd.check_keys({"type"})
     else:
         rd.check_keys({"type"})
         if not any(k.finer for k in s.knobs):
             raise rd.error("type", "'finest' needs at least one knob with 'finer larger;' or 'finer smaller;'")
     return s
+
+
+def missing_includes(study):
+    """StudyDictErrors of the #include entries whose file is not there."""
+    return [block.error(key, f"no file {path} (the path is relative to the case file's folder, as the case's own "
+                             "#include lines; a generated dictionary is written by the step that makes it)")
+            for block, key, path in study.includes if not os.path.isfile(path)]
 
 
 if __name__ == "__main__":

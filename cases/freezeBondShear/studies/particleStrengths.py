@@ -284,6 +284,7 @@ def kpa(x, digits=1):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--jobs", type=iceCases.whole_number(1), default=2)
+    ap.add_argument("--sets", default=SETS_CSV, help="the freeze-bond sets (CSV as ../shared/data/freezeBondSets.csv)")
     ap.add_argument("--out", default=os.path.join(SHEAR_CASE, "runs", "particleStrengths"))
     ap.add_argument("--rubble", nargs="+", default=[
         os.path.join(TOP, "cases", "rubbleBeam", "results", "summary_cuboid.json"),
@@ -336,7 +337,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     cf = a.area_correction or float(iceCases.get_entry(os.path.join(COMMON, "freezeBondProperties"),
                                                        "areaCorrection.value"))
-    sets = read_sets()
+    sets = read_sets(a.sets)
     conf_rows, dist = rubble_confinement(a.rubble, a.bonds)
     target = a.confinement or conf_rows[0]["bond_mean_Pa"]
     print(f"confinement on the bond area: {target:.0f} Pa "
