@@ -127,18 +127,20 @@ def mean_sd(values):
 
 def crossing(points, level):
     """The ratio where a least-squares line of share against log(ratio) reaches `level`, or None
-    (a line that does not rise); also whether that ratio lies inside the points' range."""
+    (a line that does not rise); whether that ratio lies inside the points' range; and the
+    standard deviation of the points about the line (how much the ratio alone leaves unexplained)."""
     xs = [math.log(r) for r, _ in points]
     ys = [s for _, s in points]
     if len(set(xs)) < 2:
-        return None, False
+        return None, False, None
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     sxx = sum((x - mx) ** 2 for x in xs)
     slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    residual = math.sqrt(sum((y - my - slope * (x - mx)) ** 2 for x, y in zip(xs, ys)) / max(1, len(xs) - 2))
     if slope <= 0:
-        return None, False
+        return None, False, residual
     ratio = math.exp(mx + (level - my) / slope)
-    return ratio, min(xs) <= math.log(ratio) <= max(xs)
+    return ratio, min(xs) <= math.log(ratio) <= max(xs), residual
 
 
 def analyse(args):
@@ -193,10 +195,13 @@ def analyse(args):
         for level in THRESHOLDS:
             per_packing = []
             outside = []
+            residuals = []
             for (s, packing), points in sorted(share_points.items()):
                 if s != bond_set:
                     continue
-                ratio, inside = crossing(points, level)
+                ratio, inside, residual = crossing(points, level)
+                if residual is not None:
+                    residuals.append(residual)
                 if ratio is not None:
                     per_packing.append(ratio)
                     if not inside:
@@ -205,7 +210,8 @@ def analyse(args):
             thresholds.append({"bond_set": bond_set, "keel_share": level, "ratio": _r(m, 2), "ratio_sd": _r(sd, 2),
                                "packings": len(per_packing),
                                "per_packing": ", ".join("%.2f" % v for v in per_packing),
-                               "extrapolated_packings": ", ".join(outside)})
+                               "extrapolated_packings": ", ".join(outside),
+                               "share_scatter_about_line": _r(mean_sd(residuals)[0], 3)})
 
     out = args.out or os.path.join(HERE, sub)
     write_outputs(out, rows, thresholds, not_done, share_points, sets, args.quick)
@@ -219,8 +225,8 @@ def write_readme(rows, thresholds, not_done, points, sets):
     """The README's results block from the full map: thresholds, the keel's share on a grid, cost."""
     depths = sorted({r["keel_depth_m"] for r in rows})
     layers = sorted({r["layer_m"] for r in rows if r["layer_m"] > 0})
-    text = ["| bond set | share 25 % at depth / layer | share 50 % at depth / layer | per packing (25 %; 50 %) |",
-            "|---|---|---|---|"]
+    text = ["| bond set | share 25 % at depth / layer | share 50 % at depth / layer | per packing (25 %; 50 %) | "
+            "share's scatter about the line |", "|---|---|---|---|---|"]
     for bond_set in sets:
         t = {x["keel_share"]: x for x in thresholds if x["bond_set"] == bond_set}
 
@@ -231,7 +237,8 @@ def write_readme(rows, thresholds, not_done, points, sets):
             flag = f" (extrapolated: packing {x['extrapolated_packings']})" if x["extrapolated_packings"] else ""
             return f"**{x['ratio']} +- {x['ratio_sd']}**{flag}"
         per = "; ".join(t[level]["per_packing"] if level in t else "" for level in THRESHOLDS)
-        text.append(f"| {bond_set} | {cell(0.25)} | {cell(0.5)} | {per} |")
+        scatter = t[0.25]["share_scatter_about_line"] if 0.25 in t else ""
+        text.append(f"| {bond_set} | {cell(0.25)} | {cell(0.5)} | {per} | {scatter} |")
     for bond_set in sets:
         text += ["", f"Keel's share (mean +- sd over packings), set {bond_set}; rows: keel depth [m], columns: "
                      "layer [cm]; in brackets the failure force [kN] with no layer:", "",
