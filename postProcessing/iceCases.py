@@ -96,18 +96,35 @@ def input_files(paths):
 
 def get_entry(path, dotted):
     """The value text of `a.b.key value;` in an OpenFOAM dictionary file, or, when the
-    file does not write it, in the files it #includes (the last include first)."""
+    file does not write it, in the files it #includes (the last include first), also
+    those included inside a sub-dictionary (`a { #include "x" }`: x's `b.key`)."""
     text = open(path).read()
     try:
         begin, end = _entry_value_span(text, dotted, path)
         return text[begin:end]
     except KeyError:
-        for included in reversed(included_files(path)):
-            try:
-                return get_entry(included, dotted)
-            except KeyError:
-                pass
-        raise
+        pass
+    parts = dotted.split(".")
+    start, end = 0, len(text)
+    for depth in range(len(parts)):
+        # the #include lines of this block (its own level): they hold the rest of the path
+        level = [m for m in _INCLUDE.finditer(text, start, end)
+                 if text.count("{", start, m.start()) - text.count("}", start, m.start()) == 0]
+        for m in reversed(level):
+            included = os.path.join(os.path.dirname(path), m.group(1))
+            if os.path.isfile(included):
+                try:
+                    return get_entry(included, ".".join(parts[depth:]))
+                except KeyError:
+                    pass
+        if depth == len(parts) - 1:
+            break
+        try:
+            open_brace, close_brace = _block_span(text[:end], start, parts[depth])
+        except KeyError:
+            break
+        start, end = open_brace + 1, close_brace
+    raise KeyError(f"{dotted} not found in {path} nor in what it includes")
 
 
 def set_entry(path, dotted, value):

@@ -44,6 +44,16 @@ s = status()
 check(s and all(v.startswith("up to date") for v in s.values()),
       "the committed chain is up to date with its data and inputs:\n" + "\n".join(f"  {k}: {v}" for k, v in s.items()))
 
+# what a case reads through the include inside fixedSetCoeffs: the generated sets
+sys.path.insert(0, os.path.join(TOP, "postProcessing"))
+import iceCases  # noqa: E402
+punch_bonds = os.path.join(TOP, "cases", "rubblePunch", "constant", "freezeBondProperties")
+tensile = iceCases.get_entry(punch_bonds, "fixedSetCoeffs.sets.4h.tensile")
+check(float(tensile) == 26.9e3, f"fixedSetCoeffs.sets.4h.tensile through the include inside fixedSetCoeffs: {tensile} Pa")
+ridge_ice = os.path.join(TOP, "cases", "ridgeFlexure", "constant", "iceProperties")
+break_n = iceCases.get_entry(ridge_ice, "bondFamilies.ice.breakN")
+check(float(break_n) == 0.0013, f"ridgeFlexure's breakN from the chain's layerStrength (its last include): {break_n}")
+
 # the user's sets: 4 h tensile doubled
 sets = os.path.join(work, "mySets.csv")
 with open(os.path.join(DATA, "freezeBondSets.csv")) as f:
