@@ -6,7 +6,7 @@ The copy lives in a mirror of the project, WORK/NAME/:
   WORK/NAME/cases/CASE      the case (files git tracks or would add)
   WORK/NAME/cases/common    shared dictionaries, if the project has them
   WORK/NAME/cases/OTHER     sibling cases the case reads (others)
-  WORK/NAME/{build,postProcessing,bin,tests}  links to the build and the sources
+  WORK/NAME/{build,postProcessing,bin,tests,studies}  links to the build and the sources
   WORK/shared               link to the project's ../shared (made here if missing)
 Nothing is written into the source tree."""
 import os
@@ -50,7 +50,8 @@ def make_mirror(source, build, work, case, name=None, others=(), skip=()):
     for folder in [case, "common", *others]:
         if os.path.isdir(os.path.join(source, "cases", folder)):
             copied += copy_folder(source, os.path.join("cases", folder), mirror, skip)
-    for link, target in (("build", build), ("postProcessing", "postProcessing"), ("bin", "bin"), ("tests", "tests")):
+    for link, target in (("build", build), ("postProcessing", "postProcessing"), ("bin", "bin"), ("tests", "tests"),
+                         ("studies", "studies")):
         os.symlink(os.path.join(source, target), os.path.join(mirror, link))
     shared = os.path.join(work, "shared")
     if not os.path.lexists(shared) and os.path.isdir(os.path.join(source, "..", "shared")):

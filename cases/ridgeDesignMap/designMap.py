@@ -10,6 +10,9 @@
                                           charts keelShare.png, failureModes.png
   designMap.py analyse -map DIR -layers DIR -out DIR
                                           the same from the tables (table.csv) in other folders (tests)
+  designMap.py smoke                      checks that the case runs (./Allrun -smoke): a small keel
+                                          (1.6 x 0.4 m, 0.25 m of rubble), the 10 cm layer alone and on
+                                          it, 10 mm of travel, the map drawn; all in runs/smoke
   designMap.py resolution                 how far the map's (quick) resolution is from the default:
                                           ../ridgeFlexure's published quick and default matrices, the
                                           same 16 runs, failure force and keel share side by side
@@ -30,6 +33,7 @@ import json
 import math
 import os
 import shutil
+import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -361,6 +365,67 @@ def plot_modes(out, rows, sets):
     iceCases.save_figure(fig, os.path.join(out, "failureModes.png"))
 
 
+SMOKE_STUDY = """study {{ case ridgeFlexure; application ridgeDEM; ranks 1; arguments (-stage all); {post} }}
+knobs
+{{
+{knobs}
+}}
+set
+{{
+    "constant/ridgeProperties:box.length" 1.6;
+    "constant/ridgeProperties:box.width" 0.4;
+    "constant/ridgeProperties:consolidatedLayer.particleDiameter" 0.075;
+    "constant/ridgeProperties:test.speed" 0.2;
+    "constant/ridgeProperties:test.settleTime" 0.05;
+    "constant/ridgeProperties:assembly.relaxTime" 0.1;
+    "constant/ridgeProperties:assembly.pressSpeed" 0.05;
+    "system/controlDict:writeInterval" 1;
+    "system/controlDict:maxTravel" 0.01;
+    "system/controlDict:minTravel" 0;
+    {extra}
+}}
+figures {{ failureForce peak_force_N; equivalentThickness equivalent_thickness_m; {figures} }}
+reference {{ type none; }}
+"""
+
+
+def smoke(args):
+    """The case's pieces on a small keel: the chain's status, a keel, both studies, the map."""
+    folder = os.path.join(HERE, "runs", "smoke")
+    shutil.rmtree(folder, ignore_errors=True)
+    subprocess.run([sys.executable, os.path.join(HERE, "chain.py"), "status"], check=True)
+    keel = os.path.join(folder, "map", "keels", "keel0.25")
+
+    def make(target):
+        prepare_keel(0.25, 1)(target)
+        rubble = os.path.join(target, "constant", "rubbleProperties")
+        for entry, value in (("box.length", 1.6), ("box.width", 0.4), ("settling.maxTime", 0.5),
+                             ("settling.minTime", 0.1), ("settling.maxTilt", 30), ("compaction.targetPorosity", 0.45),
+                             ("compaction.speed", 0.1), ("compaction.holdTime", 0.2), ("compaction.releaseTime", 0.2)):
+            iceCases.set_entry(rubble, entry, value)
+    make(keel)
+    iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], log_name="log.rubbleDEM")
+    iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], log_name="log.compact")
+    layer = "layer { entry constant/ridgeProperties:consolidatedLayer.thickness; values (0.10); }"
+    studies = {
+        "layerAlone": SMOKE_STUDY.format(post="", knobs=layer, figures="",
+                                         extra='"constant/ridgeProperties:keel.settledRubble" none;'),
+        "map": SMOKE_STUDY.format(
+            post='postProcess ("postProcessing/failureAnalysis.py");',
+            knobs='keelDepth { entry constant/ridgeProperties:keel.settledRubble; '
+                  'template "${STUDY}/keels/keel${keelDepth}/DEM/compacted.h5"; values (0.25); }\n' + layer
+                  + '\nbondSet { entry constant/freezeBondProperties:fixedSetCoeffs.set; values (4h); }',
+            figures='mode "failureAnalysis/summary.json:ridge_failure.mode";', extra=""),
+    }
+    for name, text in studies.items():
+        os.makedirs(os.path.join(folder, name), exist_ok=True)
+        iceCases.write_atomically(os.path.join(folder, name, "studyDict"), text)
+        subprocess.run([sys.executable, os.path.join(TOP, "studies", "runStudy.py"), os.path.join(folder, name)],
+                       check=True)
+    return analyse(argparse.Namespace(quick=True, map=os.path.join(folder, "map", "results"),
+                                      layers=os.path.join(folder, "layerAlone", "results"), out=folder))
+
+
 def resolution(args):
     folder = os.path.join(TOP, "cases", "ridgeFlexure", "results")
     quick = {r["run"]: r for r in read_table(os.path.join(folder, "ridgeMatrix_quick.csv"))}
@@ -401,14 +466,14 @@ def resolution(args):
 
 def main(argv):
     parser = argparse.ArgumentParser(prog="designMap.py", description=__doc__.split("\n\n")[0])
-    parser.add_argument("step", choices=("keels", "analyse", "resolution"))
+    parser.add_argument("step", choices=("keels", "analyse", "resolution", "smoke"))
     parser.add_argument("-quick", action="store_true")
     parser.add_argument("-jobs", type=iceCases.whole_number(1, 64), default=2)
     parser.add_argument("-map", help="analyse: the folder of the map's table.csv")
     parser.add_argument("-layers", help="analyse: the folder of the layers' table.csv")
     parser.add_argument("-out", help="analyse: where the map goes")
     args = parser.parse_args(argv)
-    return {"keels": keels, "analyse": analyse, "resolution": resolution}[args.step](args)
+    return {"keels": keels, "analyse": analyse, "resolution": resolution, "smoke": smoke}[args.step](args)
 
 
 if __name__ == "__main__":

@@ -71,6 +71,11 @@ SCRIPTS = {
          (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke")],
         [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-publish"],
          ["-water", "cfd", "-runs", "6,14", "-publish"]]),
+    "cases/ridgeDesignMap/Allrun": (
+        [(["-jobs", "0"], "-jobs"), (["-data"], "-data"), (["-data", "foo=bar.csv"], "-data"),
+         (["-data", "freezeBondSets"], "-data"), (["-data", "freezeBondSets=/no/such.csv"], "/no/such.csv"),
+         (["-quick", "1"], "1")],
+        [[], ["-smoke"], ["-quick", "-jobs", "2", "-resume"], ["-data", "freezeBondSets=/etc/hostname"]]),
     "cases/rubbleBeam/Allrun": (
         [(["-shape", "x"], "-shape"), (["-shape"], "-shape")],
         [[], ["-smoke"], ["-shape", "empirical", "-resume", "-np", "1"], ["-publish"]]),
@@ -95,6 +100,7 @@ SCRIPTS = {
 ALLCLEANS = {
     "cases/ridgeFlexure/Allclean": [(["-bogus"], "-bogus"), (["-keels", "x"], "x")],
     "cases/rubblePunch/Allclean": [(["-bogus"], "-bogus")],
+    "cases/ridgeDesignMap/Allclean": [(["-bogus"], "-bogus"), (["-keels", "x"], "x")],
     "cases/packedBed/Allclean": [(["-bogus"], "-bogus"), (["a", "b"], "one case folder")],
     "cases/sphereSettling/Allclean": [(["-bogus"], "-bogus")],
     "cases/floatingBlock/cfd/Allclean": [(["-bogus"], "-bogus")],

@@ -11,7 +11,7 @@ what it finds in the source tree by its relative paths (../.. is the top):
   WORK/NAME/cases/CASE      the case (files git tracks or would add; no results)
   WORK/NAME/cases/common    shared dictionaries, if the project has them
   WORK/NAME/cases/OTHER     sibling cases the case reads (--with)
-  WORK/NAME/{build,postProcessing,bin,tests}  links to the build and the sources
+  WORK/NAME/{build,postProcessing,bin,tests,studies}  links to the build and the sources
   WORK/shared               link to the project's ../shared (made by CMake)
 Nothing is written into the source tree.
 
