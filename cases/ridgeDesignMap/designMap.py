@@ -174,7 +174,7 @@ def analyse(args):
             if f_layer:
                 share = number(r["failureForce"]) / f_layer - 1.0
                 shares.append(share)
-                share_points.setdefault((bond_set, r["packing"]), []).append((depth / layer, share))
+                share_points.setdefault((bond_set, r["packing"]), []).append((depth / layer, share, layer))
         modes = {}
         for r in done:
             modes[r["mode"]] = modes.get(r["mode"], 0) + 1
@@ -195,27 +195,32 @@ def analyse(args):
 
     sets = [s for s in SETS_ORDER if any(k[0] == s for k in share_points)]
     thresholds = []
-    for bond_set in sets:
-        for level in THRESHOLDS:
-            per_packing = []
-            outside = []
-            residuals = []
-            for (s, packing), points in sorted(share_points.items()):
-                if s != bond_set:
-                    continue
-                ratio, inside, residual = crossing(points, level)
-                if residual is not None:
-                    residuals.append(residual)
-                if ratio is not None:
-                    per_packing.append(ratio)
-                    if not inside:
-                        outside.append(packing)
-            m, sd = mean_sd(per_packing)
-            thresholds.append({"bond_set": bond_set, "keel_share": level, "ratio": _r(m, 2), "ratio_sd": _r(sd, 2),
-                               "packings": len(per_packing),
-                               "per_packing": ", ".join("%.2f" % v for v in per_packing),
-                               "extrapolated_packings": ", ".join(outside),
-                               "share_scatter_about_line": _r(mean_sd(residuals)[0], 3)})
+    # all layers, and without the thinnest (the 5 cm layer has smaller spheres: another resolution)
+    thinnest = min((p[2] for pts in share_points.values() for p in pts), default=0.0)
+    subsets = [("all", lambda layer: True)]
+    if any(p[2] > thinnest for pts in share_points.values() for p in pts):
+        subsets.append((f"without {thinnest * 100:g} cm", lambda layer: layer > thinnest))
+    for bond_set, (subset, keep), level in ((b, which, lv) for b in sets for which in subsets for lv in THRESHOLDS):
+        per_packing = []
+        outside = []
+        residuals = []
+        for (s, packing), points in sorted(share_points.items()):
+            if s != bond_set:
+                continue
+            ratio, inside, residual = crossing([(r, v) for r, v, layer in points if keep(layer)], level)
+            if residual is not None:
+                residuals.append(residual)
+            if ratio is not None:
+                per_packing.append(ratio)
+                if not inside:
+                    outside.append(packing)
+        m, sd = mean_sd(per_packing)
+        thresholds.append({"bond_set": bond_set, "layers": subset, "keel_share": level,
+                           "ratio": _r(m, 2), "ratio_sd": _r(sd, 2),
+                           "packings": len(per_packing),
+                           "per_packing": ", ".join("%.2f" % v for v in per_packing),
+                           "extrapolated_packings": ", ".join(outside),
+                           "share_scatter_about_line": _r(mean_sd(residuals)[0], 3)})
 
     out = args.out or os.path.join(HERE, sub)
     write_outputs(out, rows, thresholds, not_done, share_points, sets, args.quick)
@@ -229,10 +234,10 @@ def write_readme(rows, thresholds, not_done, points, sets):
     """The README's results block from the full map: thresholds, the keel's share on a grid, cost."""
     depths = sorted({r["keel_depth_m"] for r in rows})
     layers = sorted({r["layer_m"] for r in rows if r["layer_m"] > 0})
-    text = ["| bond set | share 25 % at depth / layer | share 50 % at depth / layer | per packing (25 %; 50 %) | "
-            "share's scatter about the line |", "|---|---|---|---|---|"]
-    for bond_set in sets:
-        t = {x["keel_share"]: x for x in thresholds if x["bond_set"] == bond_set}
+    text = ["| bond set | layers | share 25 % at depth / layer | share 50 % at depth / layer | per packing (25 %; 50 %) | "
+            "share's scatter about the line |", "|---|---|---|---|---|---|"]
+    for bond_set, subset in dict.fromkeys((x["bond_set"], x["layers"]) for x in thresholds):
+        t = {x["keel_share"]: x for x in thresholds if x["bond_set"] == bond_set and x["layers"] == subset}
 
         def cell(level):
             x = t.get(level)
@@ -242,7 +247,7 @@ def write_readme(rows, thresholds, not_done, points, sets):
             return f"**{x['ratio']} +- {x['ratio_sd']}**{flag}"
         per = "; ".join(t[level]["per_packing"] if level in t else "" for level in THRESHOLDS)
         scatter = t[0.25]["share_scatter_about_line"] if 0.25 in t else ""
-        text.append(f"| {bond_set} | {cell(0.25)} | {cell(0.5)} | {per} | {scatter} |")
+        text.append(f"| {bond_set} | {subset} | {cell(0.25)} | {cell(0.5)} | {per} | {scatter} |")
     for bond_set in sets:
         text += ["", f"Keel's share (mean +- sd over packings), set {bond_set}; rows: keel depth [m], columns: "
                      "layer [cm]; in brackets the failure force [kN] with no layer:", "",
@@ -309,14 +314,19 @@ def plot_share(out, rows, thresholds, sets):
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     colours = {"2min": "tab:blue", "4h": "tab:orange", "ultimate": "tab:green"}
+    thinnest = min((r["layer_m"] for r in rows if r["layer_m"] > 0), default=0.0)
     for bond_set in sets:
         pts = [r for r in rows if r["bond_set"] == bond_set and r["keel_share"] != ""]
         pts.sort(key=lambda r: r["ratio"])
-        ax.errorbar([r["ratio"] for r in pts], [r["keel_share"] for r in pts],
-                    yerr=[r["keel_share_sd"] or 0 for r in pts], fmt="o", ms=4, capsize=2,
-                    color=colours.get(bond_set), label=f"set {bond_set}")
+        for thin in (False, True):
+            mine = [r for r in pts if (r["layer_m"] == thinnest) == thin]
+            if mine:
+                ax.errorbar([r["ratio"] for r in mine], [r["keel_share"] for r in mine],
+                            yerr=[r["keel_share_sd"] or 0 for r in mine], fmt="o", ms=4, capsize=2,
+                            mfc="none" if thin else None, color=colours.get(bond_set),
+                            label=f"set {bond_set}" + (f", {thinnest * 100:g} cm layer (smaller spheres)" if thin else ""))
         for t in thresholds:
-            if t["bond_set"] == bond_set and t["ratio"] != "":
+            if t["bond_set"] == bond_set and t["ratio"] != "" and t.get("layers", "all") == "all":
                 ax.errorbar([t["ratio"]], [t["keel_share"]], xerr=[t["ratio_sd"] or 0], fmt="D", ms=7,
                             mfc="none", color=colours.get(bond_set), capsize=3)
     for level in THRESHOLDS:
