@@ -26,13 +26,9 @@ import iceCases  # noqa: E402
 keel_source, work, bin_dir = (os.path.abspath(a) for a in sys.argv[1:4])
 RUNNER = os.path.join(TOP, "studies", "runStudy.py")
 DESIGN_MAP = os.path.join(TOP, "cases", "ridgeDesignMap", "designMap.py")
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if not ok:
-        failures.append(what)
+sys.path.insert(0, os.path.dirname(HERE))
+from checkList import CheckList  # noqa: E402
+check = CheckList()
 
 
 SMALL = """
@@ -167,7 +163,4 @@ listing = subprocess.run(["/usr/bin/python3", RUNNER, ridge_study, "-bin", bin_d
 os.rename(keel_h5 + ".away", keel_h5)
 check(listing.count(" run") == 4, f"without the keel file every point would run again:\n{listing}")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("all checks passed")
+check.finish()

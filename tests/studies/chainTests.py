@@ -22,13 +22,9 @@ DATA = os.path.join(os.path.dirname(TOP), "shared", "data")
 work = os.path.abspath(sys.argv[1])
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-failures = []
-
-
-def check(ok, text):
-    print(("ok   " if ok else "FAIL ") + text, flush=True)
-    if not ok:
-        failures.append(text)
+sys.path.insert(0, os.path.dirname(HERE))
+from checkList import CheckList  # noqa: E402
+check = CheckList()
 
 
 def chain(*args):
@@ -101,7 +97,4 @@ check(r.returncode != 0 and "/no/such.csv" in r.stderr, f"a missing data file is
 r = chain("status", "-data", "mySets=x.csv")
 check(r.returncode != 0 and "freezeBondSets" in r.stderr, f"an unknown data name lists the names: {r.stderr.strip()}")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("all checks passed")
+check.finish()

@@ -20,19 +20,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(TOP, "postProcessing"))
 import iceCases  # noqa: E402
+sys.path.insert(0, os.path.dirname(HERE))
+from checkList import CheckList  # noqa: E402
 
 RUNNER = os.path.join(TOP, "studies", "runStudy.py")
 test, work, bindir = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-failures = []
-
-
-def check(ok, text):
-    print(("ok   " if ok else "FAIL ") + text, flush=True)
-    if not ok:
-        failures.append(text)
-    return ok
+check = CheckList()
 
 
 def study_dict(name, knobs, case="levelIceBeam", arguments="-particles 200", ranks=1, extra_set="",
@@ -377,7 +372,4 @@ def test_ranks():
 tests = {"skip": test_skip, "rerun": test_rerun, "resume": test_resume, "failed": test_failed,
          "atomic": test_atomic, "badDict": test_bad_dict, "lock": test_lock, "ranks": test_ranks}
 tests[test]()
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("all checks passed")
+check.finish()
