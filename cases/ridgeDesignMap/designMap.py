@@ -325,18 +325,21 @@ def plot_share(out, rows, thresholds, sets):
                             yerr=[r["keel_share_sd"] or 0 for r in mine], fmt="o", ms=4, capsize=2,
                             mfc="none" if thin else None, color=colours.get(bond_set),
                             label=f"set {bond_set}" + (f", {thinnest * 100:g} cm layer (smaller spheres)" if thin else ""))
-        for t in thresholds:
-            if t["bond_set"] == bond_set and t["ratio"] != "" and t.get("layers", "all") == "all":
+        drawn = [t for t in thresholds if t.get("layers", "all") != "all"] or thresholds   # the headline subset
+        for t in drawn:
+            if t["bond_set"] == bond_set and t["ratio"] != "":
                 ax.errorbar([t["ratio"]], [t["keel_share"]], xerr=[t["ratio_sd"] or 0], fmt="D", ms=7,
                             mfc="none", color=colours.get(bond_set), capsize=3)
     for level in THRESHOLDS:
         ax.axhline(level, color="grey", lw=0.7, ls="--")
     ax.axhline(0, color="k", lw=0.6)
     ax.set_xscale("log")
+    ax.set_yscale("symlog", linthresh=1.0)   # linear to 1, where the thresholds are; the 5 cm row above
+    ax.set_ylim(bottom=-0.2)
     ax.set_xlabel("keel depth / layer thickness")
     ax.set_ylabel("keel's share: F_ridge / F_layer alone - 1")
-    ax.set_title("Where the keel starts to matter (diamonds: the 25 % and 50 % ratios, sd over packings)",
-                 fontsize=9)
+    ax.set_title("Where the keel starts to matter (diamonds: the 25 % and 50 % ratios without the thinnest layer, "
+                 "sd over packings)", fontsize=8)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
     iceCases.save_figure(fig, os.path.join(out, "keelShare.png"))
