@@ -247,6 +247,20 @@ def small_rubble_case(source, path, length, width, thickness, max_time, tilt, en
     return path
 
 
+# The smoke tests' keel: ridgeFlexure's quick keel cut to a 1.6 x 0.4 m box and 0.25 m of rubble,
+# settled for at most 0.5 s and compacted loosely and fast (ridgeFlexure -smoke, ridgeDesignMap -smoke).
+SMOKE_KEEL = (("box.length", 1.6), ("box.width", 0.4), ("blocks.rubbleThickness", 0.25),
+              ("settling.maxTime", 0.5), ("settling.minTime", 0.1), ("settling.maxTilt", 30),
+              ("compaction.targetPorosity", 0.45), ("compaction.speed", 0.1), ("compaction.holdTime", 0.2),
+              ("compaction.releaseTime", 0.2))
+
+
+def smoke_keel(rubble_properties):
+    """Sets SMOKE_KEEL in a keel's constant/rubbleProperties."""
+    for entry, value in SMOKE_KEEL:
+        set_entry(rubble_properties, entry, value)
+
+
 def fatal_message(text):
     """The application's own message in a failed run's output (the line after its FATAL banner),
     or the output's first line when it has no banner."""

@@ -131,12 +131,13 @@ def with_entries(study, point):
 def made_from(study, point, inputs):
     """The fingerprint of what makes a point: knob values, command, fixed entries, the case's inputs,
     the post-processing and the files the point reads by a templated path."""
+    entries = study.fixed + with_entries(study, point)
     record = {"knobs": point.values, "command": command(study, point),
-              "set": [list(map(str, f)) for f in study.fixed + with_entries(study, point)], "inputs": inputs}
+              "set": [list(map(str, f)) for f in entries], "inputs": inputs}
     if study.post_process:
         record["postProcess"] = study.post_process
     upstream = upstream_files(study, point)
-    for file, dotted, value, _ in study.fixed + with_entries(study, point):
+    for file, dotted, value, _ in entries:
         if dotted == "#include":   # the generated dictionary a point includes: its content
             path = os.path.normpath(os.path.join(study.case, os.path.dirname(file), value))
             upstream[os.path.relpath(path, iceCases.TOP)] = _hash_file(path) if os.path.isfile(path) else "missing"

@@ -409,14 +409,8 @@ def smoke(args):
     subprocess.run([sys.executable, os.path.join(HERE, "chain.py"), "status"], check=True)
     keel = os.path.join(folder, "map", "keels", "keel0.25")
 
-    def make(target):
-        prepare_keel(0.25, 1)(target)
-        rubble = os.path.join(target, "constant", "rubbleProperties")
-        for entry, value in (("box.length", 1.6), ("box.width", 0.4), ("settling.maxTime", 0.5),
-                             ("settling.minTime", 0.1), ("settling.maxTilt", 30), ("compaction.targetPorosity", 0.45),
-                             ("compaction.speed", 0.1), ("compaction.holdTime", 0.2), ("compaction.releaseTime", 0.2)):
-            iceCases.set_entry(rubble, entry, value)
-    make(keel)
+    prepare_keel(0.25, 1)(keel)
+    iceCases.smoke_keel(os.path.join(keel, "constant", "rubbleProperties"))
     iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], log_name="log.rubbleDEM")
     iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], log_name="log.compact")
     layer = "layer { entry constant/ridgeProperties:consolidatedLayer.thickness; values (0.10); }"
