@@ -49,15 +49,23 @@ MiB = 1024.0 * 1024.0
 
 # ---------------------------------------------------------------------------- points
 class Point:
-    def __init__(self, study, values):
+    def __init__(self, study, values, seed=None):
         self.values = values   # {knob name: text}
-        self.label = "_".join(f"{k.name}-{values[k.name]}" for k in study.knobs).replace("/", "+")
+        self.seed = seed       # the scatter knob's value of a scatter point (the chosen point, another seed)
+        label = "_".join(f"{k.name}-{values[k.name]}" for k in study.knobs)
+        if seed is not None:
+            label += f"_{study.scatter.name}-{seed}"
+        self.label = label.replace("/", "+")
         self.state = {}
 
 
 def make_points(study, quick):
     lists = [(k.quick if quick and k.quick else k.values) for k in study.knobs]
-    return [Point(study, dict(zip([k.name for k in study.knobs], combo))) for combo in itertools.product(*lists)]
+    points = [Point(study, dict(zip([k.name for k in study.knobs], combo))) for combo in itertools.product(*lists)]
+    # the scatter: the chosen point again with each other seed, when this run holds the chosen point
+    if study.scatter and any(p.values == study.scatter_at for p in points):
+        points += [Point(study, dict(study.scatter_at), seed) for seed in study.scatter.values]
+    return points
 
 
 def _hash_file(path):
@@ -74,6 +82,14 @@ def input_files(study):
     """{name: sha256} of the case's inputs (constant/, system/, DEM/ as copy_case copies them) and of
     the files of cases/common that its dictionaries #include (not the calibrations of other cases)."""
     files = {}
+    if study.allrun is not None:   # the Allrun and the case's scripts make the point too (not results/ or README)
+        import caseMirror
+        for case in [study.case_name] + study.siblings:
+            for rel in caseMirror.case_files(iceCases.TOP, os.path.join("cases", case)):
+                inner = os.path.relpath(rel, os.path.join("cases", case)).split(os.sep)[0]
+                if inner not in ("results", "README.md", "studies"):
+                    files[rel] = _hash_file(os.path.join(iceCases.TOP, rel))
+        return files
     for sub in ("constant", "system", "DEM"):
         for folder, dirs, names in os.walk(os.path.join(study.case, sub)):
             rel = os.path.relpath(folder, study.case)
@@ -89,11 +105,21 @@ def input_files(study):
     return files
 
 
+def _knobs_of(study, point):
+    """(knob, value) of every knob a point sets: the study's, and the scatter's for a scatter point."""
+    out = [(k, point.values[k.name]) for k in study.knobs]
+    if point.seed is not None:
+        out.append((study.scatter, point.seed))
+    return out
+
+
 def command(study, point):
-    args = list(study.arguments)
-    for k in study.knobs:
+    args = list(study.allrun if study.allrun is not None else study.arguments)
+    for k, value in _knobs_of(study, point):
         if k.option:
-            args += [k.option, point.values[k.name]]
+            args += [k.option, value]
+    if study.allrun is not None:
+        return ["./Allrun"] + args
     return [study.application, "-np", str(study.ranks)] + args
 
 
@@ -134,6 +160,8 @@ def made_from(study, point, inputs):
     entries = study.fixed + with_entries(study, point)
     record = {"knobs": point.values, "command": command(study, point),
               "set": [list(map(str, f)) for f in entries], "inputs": inputs}
+    if point.seed is not None:
+        record["scatter"] = {study.scatter.name: point.seed}
     if study.post_process:
         record["postProcess"] = study.post_process
     upstream = upstream_files(study, point)
@@ -174,10 +202,17 @@ def error_tail(log, lines=3):
 
 
 def _dig(data, dotted):
-    for part in dotted.split("."):
-        if not isinstance(data, dict) or part not in data:
+    """data's item at a dotted key; `runs[3]` is a list's item."""
+    for part in re.findall(r"[^.\[\]]+|\[\d+\]", dotted):
+        if part.startswith("["):
+            index = int(part[1:-1])
+            if not isinstance(data, list) or index >= len(data):
+                return None
+            data = data[index]
+        elif not isinstance(data, dict) or part not in data:
             return None
-        data = data[part]
+        else:
+            data = data[part]
     return data
 
 
@@ -210,6 +245,23 @@ class Runner:
         p.fingerprint = made_from(self.study, p, self.inputs)
         return p.state
 
+    def case(self, p):
+        """The point's case: its copy, or for an Allrun study the case in the point's mirror of the project
+        (POINT/mirror/cases/CASE, so that the Allrun's ../.. finds build/ and postProcessing/)."""
+        if self.study.allrun is not None:
+            return os.path.join(self.folder(p), "mirror", "cases", self.study.case_name)
+        return os.path.join(self.folder(p), self.study.case_name)
+
+    def summary_file(self, p):
+        return os.path.join(self.case(p), self.study.summary)
+
+    def finished(self, p):
+        """Whether the point's case holds a finished summary (not one marked "complete": false)."""
+        try:
+            return json.load(open(self.summary_file(p))).get("complete", True) is not False
+        except (OSError, ValueError, AttributeError):
+            return False
+
     def save_state(self, p):
         write_json_atomically(os.path.join(self.folder(p), "point.json"), p.state)
 
@@ -218,26 +270,32 @@ class Runner:
         s = p.state
         if s.get("madeFrom") != p.fingerprint:
             return "run"
-        case = os.path.join(self.folder(p), self.study.case_name)
-        if s.get("status") == "done" and iceCases.finished(case):
+        case = self.case(p)
+        if s.get("status") == "done" and self.finished(p):
             return "done"
         if s.get("status") == "failed" and not self.args.retry_failed:
             return "failed"
         checkpoint = os.path.join(case, "DEM", "checkpoint")
         # 'running': the runner itself was killed (SIGKILL, a reboot); the lock says no runner holds it now
-        if self.args.resume and s.get("status") in ("killed", "running") and os.path.isdir(checkpoint) \
+        if self.args.resume and self.study.allrun is None and s.get("status") in ("killed", "running") and os.path.isdir(checkpoint) \
                 and os.listdir(checkpoint):
             return "resume"
         return "run"
 
     # -- running one point
     def prepare(self, p):
-        case = iceCases.copy_case(self.study.case, os.path.join(self.folder(p), self.study.case_name))
+        if self.study.allrun is not None:
+            import caseMirror
+            case, _ = caseMirror.make_mirror(iceCases.TOP, getattr(self.study, "build", iceCases.BUILD),
+                                             self.folder(p), self.study.case_name,
+                                             name="mirror", others=self.study.siblings, skip=("results",))
+        else:
+            case = iceCases.copy_case(self.study.case, self.case(p))
         for file, dotted, value, create in self.study.fixed + with_entries(self.study, p):
             self._set(case, file, dotted, value, create)
-        for k in self.study.knobs:
+        for k, value in _knobs_of(self.study, p):
             if k.file:   # a path (keels/keel0.5/DEM/compacted.h5) is written as a string
-                value = expand(self.study, k, p.values)
+                value = expand(self.study, k, dict(p.values, **{k.name: value}))
                 if os.path.isabs(value):   # ${STUDY}/...: relative to the point's case, as a case's own paths
                     value = os.path.relpath(value, case)
                 self._set(case, k.file, k.dotted, f'"{value}"' if "/" in value else value, k.create)
@@ -261,7 +319,7 @@ class Runner:
         if self.stopping:   # stopped before this point began: it stays as it was
             p.skipped_by_stop = True
             return p
-        case = os.path.join(self.folder(p), self.study.case_name)
+        case = self.case(p)
         if how == "run":
             os.makedirs(self.folder(p), exist_ok=True)
             p.state = {"madeFrom": p.fingerprint, "knobs": p.values, "status": "preparing", "wall_s": 0.0}
@@ -274,8 +332,11 @@ class Runner:
         timer = ["/usr/bin/time", "-f", "%M", "-o", rss_file] if os.access("/usr/bin/time", os.X_OK) else []
         if os.path.exists(rss_file):
             os.remove(rss_file)
-        cmd = timer + ["mpirun", "-np", str(self.study.ranks), "--oversubscribe", self.study.app, "-case", case]
-        cmd += command(self.study, p)[3:] + (["-resume"] if how == "resume" else [])
+        if self.study.allrun is not None:
+            cmd = timer + ["bash"] + command(self.study, p)
+        else:
+            cmd = timer + ["mpirun", "-np", str(self.study.ranks), "--oversubscribe", self.study.app, "-case", case]
+            cmd += command(self.study, p)[3:] + (["-resume"] if how == "resume" else [])
         env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                    OMPI_MCA_mpi_yield_when_idle="1")
         log = os.path.join(self.folder(p), "log.run")
@@ -293,6 +354,7 @@ class Runner:
                 # the point holds the study's lock too (an inherited descriptor of the locked file):
                 # if this runner is killed outright, no other runner starts while the point still runs
                 proc = subprocess.Popen(cmd, stdout=out, stderr=errors, env=env, start_new_session=True,
+                                        cwd=case if self.study.allrun is not None else None,
                                         pass_fds=(self.lock_fd,) if self.lock_fd is not None else ())
                 self.running[p.label] = proc
             _, status, usage = os.wait4(proc.pid, 0)
@@ -320,10 +382,10 @@ class Runner:
         p.state["finished_at"] = _now()
         p.state.pop("error", None)
         post_error = None
-        if proc.returncode == 0 and iceCases.finished(case) and self.study.post_process and not self.stopping:
+        if proc.returncode == 0 and self.finished(p) and self.study.post_process and not self.stopping:
             post_error = self.post_process(p, case)
             p.state["wall_s"] = time.time() - start + p.state["wall_s"] - wall
-        if proc.returncode == 0 and iceCases.finished(case) and post_error is None:
+        if proc.returncode == 0 and self.finished(p) and post_error is None:
             p.state["status"] = "done"
             with self.lock:
                 self.run_walls.append(p.state["wall_s"])
@@ -357,8 +419,7 @@ class Runner:
         if p.state.get("status") != "done":
             return {}
         try:
-            summary = json.load(open(os.path.join(self.folder(p), self.study.case_name, "postProcessing",
-                                                  "summary.json")))
+            summary = json.load(open(self.summary_file(p)))
         except (OSError, ValueError):
             return {}
         p.summary = summary
@@ -366,12 +427,11 @@ class Runner:
         out = {}
         for name, key in self.study.figures:
             data = summary
-            if ":" in key:   # file.json:dotted, another file of the point's postProcessing/
+            if ":" in key:   # file.json:dotted, another file of the point's case, from the summary's folder
                 file, key = key.split(":", 1)
                 if file not in others:
                     try:
-                        others[file] = json.load(open(os.path.join(self.folder(p), self.study.case_name,
-                                                                   "postProcessing", file)))
+                        others[file] = json.load(open(os.path.join(os.path.dirname(self.summary_file(p)), file)))
                     except (OSError, ValueError):
                         others[file] = {}
                 data = others[file]
@@ -390,9 +450,11 @@ class Runner:
             if k.finer:
                 run_values = sorted({q.values[k.name] for q in self.points}, key=float)
                 values[k.name] = run_values[-1] if k.finer == "larger" else run_values[0]
-        return next(q for q in self.points if q.values == values)
+        return next(q for q in self.points if q.values == values and q.seed is None)
 
     def is_case_default(self, p):
+        if p.seed is not None:
+            return False
         for k in self.study.knobs:
             if k.case_value is None:
                 return False
@@ -405,12 +467,21 @@ class Runner:
     def rows(self):
         figs = {p.label: self.figures(p) for p in self.points}
         rows = []
+        scatter = self.scatter(figs)
         for p in self.points:
             row = {"point": p.label}
             row.update(p.values)
+            if self.study.scatter:
+                row[self.study.scatter.name] = p.seed if p.seed is not None else (self.study.scatter.case_value or "")
+                row["is_scatter"] = int(p.seed is not None)
             row["status"] = p.state.get("status", "pending") if p.state.get("madeFrom") == p.fingerprint else "pending"
             if self.study.reference_type == "measured":
                 ref, ref_label = self.study.reference, "measured: " + self.study.reference_source
+            elif self.study.reference_type == "summary":
+                own = getattr(p, "summary", {}) if p.state.get("status") == "done" else {}
+                ref = {n: _dig(own, key) for n, key in self.study.reference_keys.items()}
+                ref = {n: float(v) for n, v in ref.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
+                ref_label = self.study.reference_source
             elif self.study.reference_type == "none":
                 ref, ref_label = {}, "none"
             else:
@@ -422,6 +493,11 @@ class Runner:
                 row[name] = v
                 numeric = isinstance(v, float) and isinstance(r, float)
                 row[name + "_error"] = (v - r) / r if numeric and r == r and r != 0 and v == v else float("nan")
+                if self.study.scatter and name in scatter:
+                    sd = scatter[name]
+                    row[name + "_scatter"] = sd
+                    err = row[name + "_error"]
+                    row[name + "_within_scatter"] = int(abs(err) <= 2 * sd) if err == err and sd == sd else ""
             row["reference"] = ref_label
             row["is_reference"] = int(self.study.reference_type == "finest" and self.reference_point(p) is p)
             row["is_case_default"] = int(self.is_case_default(p))
@@ -434,7 +510,7 @@ class Runner:
             row["particle_steps_per_s"] = float(pss) if pss is not None else float("nan")
             row["n_particles"] = s.get("particles", "")
             row["n_steps"] = s.get("steps", "")
-            row["ranks"] = self.study.ranks
+            row["ranks"] = self.study.cores
             row["peak_rss_MiB"] = p.state.get("peak_rss_MiB", float("nan")) if row["status"] != "pending" else float("nan")
             row["load_average"] = p.state.get("load_average", float("nan")) if row["status"] != "pending" else float("nan")
             row["git_revision"] = p.state.get("git_revision", "") if row["status"] != "pending" else ""
@@ -442,6 +518,25 @@ class Runner:
             row["error"] = p.state.get("error", "") if row["status"] == "failed" else ""
             rows.append(row)
         return rows
+
+    def scatter(self, figs):
+        """{figure: relative sample standard deviation} over the chosen point and its scatter points
+        (NaN until two of them are done): the packing's (seed's) share of any error."""
+        if not self.study.scatter:
+            return {}
+        group = [q for q in self.points if q.values == self.study.scatter_at
+                 and q.state.get("madeFrom") == q.fingerprint and q.state.get("status") == "done"]
+        out = {}
+        for name, _ in self.study.figures:
+            values = [figs[q.label].get(name) for q in group]
+            values = [v for v in values if isinstance(v, float) and v == v]
+            if len(values) < 2:
+                out[name] = float("nan")
+                continue
+            mean = sum(values) / len(values)
+            var = sum((v - mean) ** 2 for v in values) / (len(values) - 1)
+            out[name] = var ** 0.5 / abs(mean) if mean else float("nan")
+        return out
 
     def write_tables(self):
         os.makedirs(self.tables, exist_ok=True)
@@ -495,6 +590,12 @@ class Runner:
         with self.lock:
             self.stopping = True
             for proc in self.running.values():
+                if self.study.allrun is not None:   # the Allrun's whole group: its mpirun and ranks
+                    try:
+                        os.killpg(proc.pid, signal.SIGTERM)
+                    except ProcessLookupError:
+                        pass
+                    continue
                 # mpirun (the child of /usr/bin/time, which would die at once and leave it running)
                 # forwards the signal to its ranks and ends after them
                 try:
@@ -520,7 +621,7 @@ class Runner:
                 todo.append((p, v))
         total = len(self.points)
         print(f"runStudy: {self.study.case_name}, {total} points ({kept} finished before, {len(todo)} to run), "
-              f"-jobs {self.args.jobs}, {self.study.ranks} rank(s) each; runs in {self.runs}")
+              f"-jobs {self.args.jobs}, {self.study.cores} core(s) each; runs in {self.runs}")
         self.write_tables()
         done = kept
         with concurrent.futures.ThreadPoolExecutor(self.args.jobs) as pool:
@@ -618,7 +719,9 @@ def main(argv):
         for e in missing:
             print(f"runStudy: {e}", file=sys.stderr)
         return 1
-    if args.bin:
+    if args.bin and study.allrun is not None:   # the Allrun finds the applications through the mirror's build/
+        study.build = os.path.dirname(os.path.abspath(args.bin))
+    elif args.bin:
         study.app = os.path.join(os.path.abspath(args.bin), study.application)
     if not os.access(study.app, os.X_OK):
         print(f"runStudy: {study.app} is not built; run bin/build", file=sys.stderr)

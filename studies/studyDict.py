@@ -219,15 +219,16 @@ class Study:
 
 
 # the table's own columns: no knob or figure may take these names
-RESERVED = {"point", "status", "reference", "is_reference", "is_case_default", "wall_s", "particle_steps_per_s",
+RESERVED = {"point", "status", "reference", "is_reference", "is_case_default", "is_scatter", "wall_s",
+            "particle_steps_per_s",
             "n_particles", "n_steps", "ranks", "peak_rss_MiB", "load_average", "git_revision", "finished_at", "error"}
 
 
 def _check_name(d, name, what, taken):
-    if name in RESERVED or name.endswith("_error") or name in taken:
+    if name in RESERVED or name.endswith(("_error", "_scatter", "_within_scatter")) or name in taken:
         raise StudyDictError(d.file, d.entries[name].line, f"{d.path}.{name}",
                              f"a {what} cannot be named '{name}' (a column of the table: "
-                             f"{', '.join(sorted(RESERVED | set(taken)))}, or *_error)")
+                             f"{', '.join(sorted(RESERVED | set(taken)))}, or *_error, *_scatter)")
     if not re.fullmatch(r"[A-Za-z]\w*", name):
         raise StudyDictError(d.file, d.entries[name].line, f"{d.path}.{name}",
                              f"a {what}'s name is a word of letters, digits and '_'")
@@ -288,19 +289,91 @@ def _ladder(d, key):
     return ["%.6g" % (start * factor ** i) for i in range(count)]
 
 
+def _read_knob(d, name, s, path):
+    """One knob of `knobs` (or the knob of `scatter`): where it goes and its values."""
+    d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create", "template",
+                  "with"})
+    knob = Knob(name)
+    if d.found("entry") == d.found("option"):
+        raise StudyDictError(path, d.line, d.path, "needs one of 'entry file:dotted.path;' or 'option -name;'")
+    if d.found("entry"):
+        knob.file, knob.dotted = _split_entry(d, "entry", d.word("entry"))
+        knob.create = d.word("create", default="no", allowed=("yes", "no")) == "yes"
+        knob.case_value = _case_value(s.case, knob.file, knob.dotted)
+        if not os.path.isfile(os.path.join(s.case, knob.file)):
+            raise d.error("entry", f"the case has no file {knob.file} ({s.case})")
+        if knob.case_value is None and not knob.create:
+            raise d.error("entry", f"{knob.dotted} is not in {s.case_name}/{knob.file} nor in the files it "
+                                   "includes (write 'create yes;' if the point may add it)")
+    else:
+        knob.option = d.word("option")
+        if not re.fullmatch(r"-\w+", knob.option):
+            raise d.error("option", f"needs an option such as -particles, got '{knob.option}'")
+        if d.found("create"):
+            raise d.error("create", "only for an 'entry' knob")
+        if d.found("template"):
+            raise d.error("template", "only for an 'entry' knob")
+    if d.found("template"):
+        knob.template = d.word("template")
+    if d.found("caseEntry"):
+        file, dotted = _split_entry(d, "caseEntry", d.word("caseEntry"))
+        knob.case_value = _case_value(s.case, file, dotted)
+        if knob.case_value is None:
+            raise d.error("caseEntry", f"{dotted} is not in {s.case_name}/{file}")
+    if d.found("values") == d.found("ladder"):
+        raise StudyDictError(path, d.line, d.path, "needs one of 'values ( ... );' or 'ladder { ... }'")
+    raw = d.items("values") if d.found("values") else _ladder(d, "ladder")
+    if not raw:
+        raise d.error("values", "needs at least one value")
+
+    def resolve(texts, key):
+        out = []
+        for t in texts:
+            if t == "default":
+                if knob.case_value is None:
+                    raise d.error(key, "'default' needs the case's own value: the entry is not in the case"
+                                       + ("" if knob.file else " (name it with 'caseEntry file:dotted;')"))
+                t = knob.case_value
+            if t in out:
+                raise d.error(key, f"value '{t}' twice")
+            if not re.fullmatch(r"[\w.+/-]+", t) or ".." in t.split("/"):
+                raise d.error(key, f"'{t}': a value is one word, number or relative path")
+            out.append(t)
+        return out
+    knob.values = resolve(raw, "values" if d.found("values") else "ladder")
+    if d.found("quick"):
+        knob.quick = resolve(d.items("quick"), "quick")
+        extra = [q for q in knob.quick if q not in knob.values]
+        if extra:
+            raise d.error("quick", f"{', '.join(extra)} not among the values")
+    if d.found("finer"):
+        knob.finer = d.word("finer", allowed=("larger", "smaller"))
+        bad = [v for v in knob.values if _number(v) is None]
+        if bad:
+            raise d.error("finer", f"needs numeric values, got {', '.join(bad)}")
+    if d.found("with"):
+        wd = d.subdict("with")
+        for value in wd.keys():
+            if value not in knob.values:
+                raise wd.error(value, f"'{value}' is not among the values ({', '.join(knob.values)})")
+            knob.with_entries[value] = _fixed_entries(wd.subdict(value), s)
+    return knob
+
+
 def read_study(path):
     """The Study of the study dictionary at path (a file, or a folder holding `studyDict`)."""
     if os.path.isdir(path):
         path = os.path.join(path, "studyDict")
     path = os.path.abspath(path)
     top = parse(path)
-    top.check_keys({"study", "knobs", "set", "figures", "reference"})
+    top.check_keys({"study", "knobs", "set", "figures", "reference", "scatter"})
     s = Study()
     s.dict_path = path
     s.folder = os.path.dirname(path)
 
     st = top.subdict("study")
-    st.check_keys({"case", "application", "ranks", "arguments", "description", "postProcess"})
+    st.check_keys({"case", "application", "allrun", "summary", "siblings", "cores", "ranks", "arguments",
+                   "description", "postProcess"})
     case = st.word("case")
     candidates = [os.path.join(s.folder, case), os.path.join(TOP, "cases", case)] if not os.path.isabs(case) else [case]
     found = [c for c in candidates if os.path.isfile(os.path.join(c, "Allrun"))]
@@ -308,14 +381,40 @@ def read_study(path):
         raise st.error("case", f"no case '{case}' (looked for an Allrun in {', '.join(candidates)})")
     s.case = os.path.realpath(found[0])
     s.case_name = os.path.basename(s.case)
-    s.application = st.word("application")
-    s.app = os.path.join(iceCases.BUILD, "demModels", s.application)
-    if not re.fullmatch(r"\w+", s.application):
-        raise st.error("application", f"needs the name of an application in build/demModels, got '{s.application}'")
+    if st.found("application") == st.found("allrun"):
+        raise StudyDictError(path, st.line, "study", "needs one of 'application NAME;' (build/demModels/NAME "
+                                                     "-case POINT) or 'allrun ( options );' (the case's ./Allrun)")
+    s.allrun = st.items("allrun") if st.found("allrun") else None
+    if s.allrun is not None:
+        s.application = "Allrun"
+        s.app = os.path.join(s.case, "Allrun")
+        if st.found("ranks") or st.found("arguments"):
+            raise st.error("ranks" if st.found("ranks") else "arguments",
+                           "not with 'allrun': write the Allrun's own options in its list (-np 1)")
+    else:
+        s.application = st.word("application")
+        s.app = os.path.join(iceCases.BUILD, "demModels", s.application)
+        if not re.fullmatch(r"\w+", s.application):
+            raise st.error("application", f"needs the name of an application in build/demModels, got "
+                                          f"'{s.application}'")
+        for key in ("summary", "siblings"):
+            if st.found(key):
+                raise st.error(key, "only with 'allrun' (an application writes postProcessing/summary.json)")
+    s.summary = st.word("summary", default="postProcessing/summary.json")
+    if os.path.isabs(s.summary) or ".." in s.summary.split("/") or not s.summary.endswith(".json"):
+        raise st.error("summary", f"needs a .json file inside the case, got '{s.summary}'")
+    s.siblings = st.items("siblings") if st.found("siblings") else []
+    for sibling in s.siblings:
+        if not os.path.isdir(os.path.join(TOP, "cases", sibling)):
+            raise st.error("siblings", f"no case cases/{sibling}")
     s.ranks = st.number("ranks", default=1, whole=True, positive=True)
     s.arguments = st.items("arguments") if st.found("arguments") else []
     s.description = st.word("description", default="")
     s.post_process = st.items("postProcess") if st.found("postProcess") else []
+    if s.allrun is None and st.found("cores"):
+        raise st.error("cores", "only with 'allrun' (an application point takes its ranks)")
+    s.cores = s.ranks if s.allrun is None else st.number("cores", default=_allrun_cores(s.allrun), whole=True,
+                                                         positive=True)
     if s.post_process:
         script = os.path.join(TOP, s.post_process[0])
         if not os.path.isfile(script) or os.path.isabs(s.post_process[0]):
@@ -329,74 +428,7 @@ def read_study(path):
     s.includes = []   # (block, key, path) of every "file:#include" entry: checked by missing_includes
     for name in kd.keys():
         _check_name(kd, name, "knob", [k.name for k in s.knobs])
-        d = kd.subdict(name)
-        d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create", "template",
-                      "with"})
-        knob = Knob(name)
-        if d.found("entry") == d.found("option"):
-            raise StudyDictError(path, d.line, d.path, "needs one of 'entry file:dotted.path;' or 'option -name;'")
-        if d.found("entry"):
-            knob.file, knob.dotted = _split_entry(d, "entry", d.word("entry"))
-            knob.create = d.word("create", default="no", allowed=("yes", "no")) == "yes"
-            knob.case_value = _case_value(s.case, knob.file, knob.dotted)
-            if not os.path.isfile(os.path.join(s.case, knob.file)):
-                raise d.error("entry", f"the case has no file {knob.file} ({s.case})")
-            if knob.case_value is None and not knob.create:
-                raise d.error("entry", f"{knob.dotted} is not in {s.case_name}/{knob.file} nor in the files it "
-                                       "includes (write 'create yes;' if the point may add it)")
-        else:
-            knob.option = d.word("option")
-            if not re.fullmatch(r"-\w+", knob.option):
-                raise d.error("option", f"needs an option such as -particles, got '{knob.option}'")
-            if d.found("create"):
-                raise d.error("create", "only for an 'entry' knob")
-            if d.found("template"):
-                raise d.error("template", "only for an 'entry' knob")
-        if d.found("template"):
-            knob.template = d.word("template")
-        if d.found("caseEntry"):
-            file, dotted = _split_entry(d, "caseEntry", d.word("caseEntry"))
-            knob.case_value = _case_value(s.case, file, dotted)
-            if knob.case_value is None:
-                raise d.error("caseEntry", f"{dotted} is not in {s.case_name}/{file}")
-        if d.found("values") == d.found("ladder"):
-            raise StudyDictError(path, d.line, d.path, "needs one of 'values ( ... );' or 'ladder { ... }'")
-        raw = d.items("values") if d.found("values") else _ladder(d, "ladder")
-        if not raw:
-            raise d.error("values", "needs at least one value")
-
-        def resolve(texts, key):
-            out = []
-            for t in texts:
-                if t == "default":
-                    if knob.case_value is None:
-                        raise d.error(key, "'default' needs the case's own value: the entry is not in the case"
-                                           + ("" if knob.file else " (name it with 'caseEntry file:dotted;')"))
-                    t = knob.case_value
-                if t in out:
-                    raise d.error(key, f"value '{t}' twice")
-                if not re.fullmatch(r"[\w.+/-]+", t) or ".." in t.split("/"):
-                    raise d.error(key, f"'{t}': a value is one word, number or relative path")
-                out.append(t)
-            return out
-        knob.values = resolve(raw, "values" if d.found("values") else "ladder")
-        if d.found("quick"):
-            knob.quick = resolve(d.items("quick"), "quick")
-            extra = [q for q in knob.quick if q not in knob.values]
-            if extra:
-                raise d.error("quick", f"{', '.join(extra)} not among the values")
-        if d.found("finer"):
-            knob.finer = d.word("finer", allowed=("larger", "smaller"))
-            bad = [v for v in knob.values if _number(v) is None]
-            if bad:
-                raise d.error("finer", f"needs numeric values, got {', '.join(bad)}")
-        if d.found("with"):
-            wd = d.subdict("with")
-            for value in wd.keys():
-                if value not in knob.values:
-                    raise wd.error(value, f"'{value}' is not among the values ({', '.join(knob.values)})")
-                knob.with_entries[value] = _fixed_entries(wd.subdict(value), s)
-        s.knobs.append(knob)
+        s.knobs.append(_read_knob(kd.subdict(name), name, s, path))
 
     names = [k.name for k in s.knobs]
     for knob in s.knobs:
@@ -409,6 +441,7 @@ def read_study(path):
             if "$" in re.sub(r"\$\{[^}]*\}", "", knob.template):
                 raise kd.subdict(knob.name).error("template", "a '$' only as ${knob} or ${STUDY}")
 
+    s.scatter, s.scatter_at = (None, None) if not top.found("scatter") else _read_scatter(top.subdict("scatter"), s, path)
     s.fixed = _fixed_entries(top.subdict("set"), s) if top.found("set") else []
     # the knobs' `with` blocks were read before `set`: their includes are in s.includes too
 
@@ -417,20 +450,23 @@ def read_study(path):
         raise StudyDictError(path, fd.line, "figures", "needs at least one figure")
     s.figures = []   # (name, dotted key in summary.json)
     for name in fd.keys():
-        _check_name(fd, name, "figure", [k.name for k in s.knobs] + [n for n, _ in s.figures])
+        _check_name(fd, name, "figure", [k.name for k in s.knobs] + [n for n, _ in s.figures]
+                    + ([s.scatter.name] if s.scatter else []))
         e = fd.entries[name]
         if e.kind == "dict":
             e.value.check_keys({"key"})
             key = e.value.word("key")
         else:
             key = fd.word(name)
-        if not re.fullmatch(r"([\w./]+\.json:)?[\w.]+", key) or ".." in key.split(":")[0].split("/"):
-            raise fd.error(name, f"needs a dotted key of summary.json, or file.json:dotted.key of another "
-                                 f"file under the point's postProcessing/, got '{key}'")
+        if not re.fullmatch(r"([\w./]+\.json:)?[\w.\[\]]+", key) or \
+                os.path.normpath(os.path.join(os.path.dirname(s.summary), key.split(":")[0])).startswith(".."):
+            raise fd.error(name, f"needs a dotted key of the summary (runs[0].x for a list's item), or "
+                                 f"file.json:dotted.key of another file of the point's case, its path from the "
+                                 f"summary's folder, got '{key}'")
         s.figures.append((name, key))
 
     rd = top.subdict("reference")
-    s.reference_type = rd.word("type", allowed=("measured", "finest", "none"))
+    s.reference_type = rd.word("type", allowed=("measured", "finest", "summary", "none"))
     if s.reference_type == "measured":
         rd.check_keys({"type", "values", "file", "quantities", "source"})
         s.reference_source = rd.word("source", default="")
@@ -461,6 +497,18 @@ def read_study(path):
                 raise StudyDictError(path, rd.line, "reference", f"'{name}' is no figure (figures: {', '.join(names)})")
         if not s.reference:
             raise StudyDictError(path, rd.line, "reference", "a measured reference needs 'values { ... }' or 'file'")
+    elif s.reference_type == "summary":   # an analytic answer the point computes itself (Archimedes, the ODE)
+        rd.check_keys({"type", "keys", "source"})
+        kd = rd.subdict("keys")
+        names = [n for n, _ in s.figures]
+        s.reference_keys = {}
+        for name in kd.keys():
+            if name not in names:
+                raise kd.error(name, f"'{name}' is no figure (figures: {', '.join(names)})")
+            s.reference_keys[name] = kd.word(name)
+        if not s.reference_keys:
+            raise StudyDictError(path, kd.line, "reference.keys", "needs at least one figure's key")
+        s.reference_source = rd.word("source", default="the point's own summary")
     elif s.reference_type == "none":   # a map, not a convergence study: no error columns to fill
         rd.check_keys({"type"})
     else:
@@ -468,6 +516,45 @@ def read_study(path):
         if not any(k.finer for k in s.knobs):
             raise rd.error("type", "'finest' needs at least one knob with 'finer larger;' or 'finer smaller;'")
     return s
+
+
+def _allrun_cores(options):
+    """The cores an Allrun point takes: its -np (or -jobs), 1 without."""
+    for flag in ("-np", "-jobs"):
+        if flag in options[:-1]:
+            n = _number(options[options.index(flag) + 1])
+            if n is not None and n >= 1:
+                return int(n)
+    return 1
+
+
+def _read_scatter(sd, s, path):
+    """`scatter { <knob> { entry ...; values (...); } at { knob value; ... } }`: the packings (or
+    other seeds) run at the chosen point `at` beside its own, to measure the scatter of its figures."""
+    names = [n for n in sd.keys() if n != "at"]
+    if len(names) != 1:
+        raise StudyDictError(path, sd.line, "scatter", "needs one knob (the seed: entry or option, values) "
+                                                       "and 'at { knob value; }'")
+    name = names[0]
+    _check_name(sd, name, "scatter knob", [k.name for k in s.knobs])
+    knob = _read_knob(sd.subdict(name), name, s, path)
+    for key in ("quick", "finer", "with", "template"):
+        if sd.subdict(name).found(key):
+            raise sd.subdict(name).error(key, "not for the scatter's knob")
+    if knob.case_value in knob.values:
+        raise sd.subdict(name).error("values", f"'{knob.case_value}' is the case's own value, which the point "
+                                               "`at` runs already: list the other seeds")
+    at = sd.subdict("at")
+    at.check_keys({k.name for k in s.knobs})
+    values = {}
+    for k in s.knobs:
+        v = at.word(k.name)
+        if v == "default":
+            v = k.case_value
+        if v not in k.values:
+            raise at.error(k.name, f"'{v}' is not among the knob's values ({', '.join(k.values)})")
+        values[k.name] = v
+    return knob, values
 
 
 def missing_includes(study):

@@ -20,9 +20,12 @@ def _num(text):
 def plot(runner, rows, path):
     study = runner.study
     knobs = study.knobs
-    done = [r for r in rows if r["status"] == "done"]
+    seeds = [r for r in rows if r["status"] == "done" and r.get("is_scatter")]
+    done = [r for r in rows if r["status"] == "done" and not r.get("is_scatter")]
     # text figures (a failure mode) have no axis: the table holds them
-    figs = [name for name, _ in study.figures if all(isinstance(r[name], float) for r in done)]
+    figs = [name for name, _ in study.figures if done and all(isinstance(r[name], float) for r in done)]
+    if not figs:   # nothing finished yet
+        return
     ncol = len(knobs) + 1
     fig, axes = plt.subplots(len(figs), ncol, figsize=(3.6 * ncol, 2.7 * len(figs)), squeeze=False)
     for i, name in enumerate(figs):
@@ -81,6 +84,16 @@ def plot(runner, rows, path):
                     best = e
             ax.step([f[0] for f in front], [f[1] for f in front], where="post", color="tab:orange", lw=1,
                     label="Pareto front")
+            others = [(r["wall_s"], max(abs(r[name + "_error"]) * 100, 1e-3)) for r in seeds
+                      if r[name + "_error"] == r[name + "_error"]]
+            if others:
+                ax.scatter([o[0] for o in others], [o[1] for o in others], marker="x", s=14, color="grey",
+                           label=f"chosen point, other {study.scatter.name}s")
+            sd = next((r.get(name + "_scatter") for r in done if r.get(name + "_scatter") == r.get(name + "_scatter")
+                       and r.get(name + "_scatter") is not None), None)
+            if sd:
+                ax.axhspan(1e-3, 200 * sd, color="grey", alpha=0.15, lw=0,
+                           label=f"within 2 sd of the {study.scatter.name}s ({100 * sd:.2g} %)")
             for w, e, r in pts:
                 if r["is_case_default"]:
                     ax.scatter([w], [e], marker="*", s=90, color="red", zorder=3, label="case default")
@@ -99,8 +112,12 @@ def plot(runner, rows, path):
         ax.set_xlabel("wall time [s]", fontsize=8)
         ax.set_ylabel(f"|{name} error| [%]", fontsize=8)
         ax.tick_params(labelsize=7)
-    ref = ("reference: " + study.reference_source) if study.reference_type == "measured" else \
-        "reference: the finest point (" + ", ".join(f"{k.name} {k.finer}" for k in knobs if k.finer) + ")"
+    if study.reference_type in ("measured", "summary"):
+        ref = "reference: " + study.reference_source
+    elif study.reference_type == "none":
+        ref = "no reference"
+    else:
+        ref = "reference: the finest point (" + ", ".join(f"{k.name} {k.finer}" for k in knobs if k.finer) + ")"
     fig.suptitle(f"{study.case_name}: {study.description or 'study'} ({ref})", fontsize=9)
     fig.tight_layout()
     tmp = path + ".tmp.png"

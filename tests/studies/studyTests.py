@@ -2,7 +2,7 @@
 """Tests of the parametric-study runner (studies/runStudy.py) on small level-ice beams.
 
 usage: studyTests.py TEST WORKDIR BINDIR
-  TEST: skip | rerun | resume | failed | atomic | badDict | lock | ranks
+  TEST: skip | rerun | resume | failed | atomic | badDict | lock | ranks | scatter | allrun
   WORKDIR: an empty folder of the build tree (removed first)
   BINDIR: the folder of iceBeamDEM
 
@@ -32,7 +32,7 @@ check = CheckList()
 
 def study_dict(name, knobs, case="levelIceBeam", arguments="-particles 200", ranks=1, extra_set="",
                figures="slope elastic_slope_N_per_m; firstPeak first_peak_force_N;",
-               reference="type measured; values { slope 6.25e6; firstPeak 120e3; }"):
+               reference="type measured; values { slope 6.25e6; firstPeak 120e3; }", extra=""):
     folder = os.path.join(work, name)
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, "studyDict")
@@ -45,6 +45,7 @@ knobs
 set {{ "system/controlDict:writeInterval" 10; {extra_set} }}
 figures {{ {figures} }}
 reference {{ {reference} }}
+{extra}
 """)
     return folder
 
@@ -369,7 +370,83 @@ def test_ranks():
                   and float(t["load_average"]) >= 0, f"wall {t['wall_s']} s, peak RSS {t['peak_rss_MiB']} MiB")
 
 
+def test_scatter():
+    """The seed scatter at the chosen point: its other packings run beside it, each figure's relative
+    standard deviation over the three is on every row (computed here again from the rows), an
+    error within two of them is flagged, the scatter points are no reference and no case default;
+    the case's own seed among the scatter's values is refused."""
+    scatter = ("scatter { seed { entry constant/beamProperties:packing.seed; values (2 3); } "
+               "at { platenSpeed 0.2; } }")
+    s = study_dict("scatter", SPEEDS, extra=scatter)
+    r = run(s, "-jobs", "2")
+    t = table(s)
+    check(r.returncode == 0 and len(t) == 4 and all(x["status"] == "done" for x in t.values()),
+          f"4 points done (2 speeds, seeds 2 and 3 at 0.2 m/s): {sorted(t)}")
+    group = [t["platenSpeed-0.2"], t["platenSpeed-0.2_seed-2"], t["platenSpeed-0.2_seed-3"]]
+    check([x["is_scatter"] for x in group] == ["0", "1", "1"] and [x["seed"] for x in group] == ["1", "2", "3"]
+          and t["platenSpeed-0.4"]["seed"] == "1", "the seed column: the case's 1, then 2 and 3")
+    for name in ("slope", "firstPeak"):
+        values = [float(x[name]) for x in group]
+        mean = sum(values) / 3
+        sd = (sum((v - mean) ** 2 for v in values) / 2) ** 0.5 / abs(mean)
+        check(len(set(values)) == 3, f"{name}: the three packings differ ({values})")
+        for x in t.values():
+            got = float(x[name + "_scatter"])
+            flag = int(abs(float(x[name + "_error"])) <= 2 * sd)
+            check(abs(got / sd - 1) < 1e-4 and x[name + "_within_scatter"] == str(flag),
+                  f"{x['point']}: {name} scatter {got:.4g} (= {sd:.4g}), within 2 sd: {x[name + '_within_scatter']}")
+    check(all(x["is_case_default"] == "0" for x in group[1:]), "a scatter point is no case default")
+    own = study_dict("scatterOwnSeed", SPEEDS, extra=scatter.replace("(2 3)", "(1 2)"))
+    r = run(own, "-list")
+    check(r.returncode == 1 and "scatter.seed.values" in r.stderr and "the case's own value" in r.stderr,
+          f"the case's own seed among the scatter's values refused: {r.stderr.strip()}")
+
+
+def test_allrun():
+    """A study of a case's ./Allrun (freezeBondTension -smoke: two tests) in a mirror of the project:
+    figures from list items of its summary, errors against the measured values that the same
+    summary carries (reference `summary`), a point the Allrun refuses recorded with its message."""
+    folder = os.path.join(work, "allrun")
+    os.makedirs(folder)
+    with open(os.path.join(folder, "studyDict"), "w") as f:
+        f.write("""study { case freezeBondTension; allrun (-smoke); cores 2; }
+knobs { particleDiameter { entry constant/tensionTestProperties:specimen.particleDiameter; values (0.0225 0.02); } }
+figures { first runs[0].simulated_kPa; second runs[1].simulated_kPa; slope fits_by_submersion_min.30.simulated.slope; }
+reference { type summary; keys { first runs[0].mean_kPa; second runs[1].mean_kPa; } }
+""")
+    r = run(folder, "-jobs", "1")
+    t = table(folder)
+    check(r.returncode == 0 and len(t) == 2 and all(x["status"] == "done" for x in t.values()),
+          f"2 Allrun points done: {[x['status'] for x in t.values()]} {r.stdout[-300:]}")
+    for label, x in t.items():
+        case = os.path.join(folder, "runs", label, "mirror", "cases", "freezeBondTension")
+        summary = json.load(open(os.path.join(case, "postProcessing", "summary.json")))
+        runs = summary["runs"]
+        for i, name in enumerate(("first", "second")):
+            want = runs[i]["simulated_kPa"] / runs[i]["mean_kPa"] - 1
+            check(abs(float(x[name]) / runs[i]["simulated_kPa"] - 1) < 1e-5
+                  and abs(float(x[name + "_error"]) - want) < 1e-5,
+                  f"{label}: {name} {x[name]} kPa, error {x[name + '_error']} (= {want:.6f} against the measured mean)")
+        check(x["slope_error"] == "nan" and float(x["slope"]) > 0 and x["ranks"] == "2",
+              f"{label}: a figure without reference has no error; 2 cores")
+        d = iceCases.get_entry(os.path.join(case, "constant", "tensionTestProperties"), "specimen.particleDiameter")
+        check(d.strip() == x["particleDiameter"], f"{label}: the mirror's case runs diameter {d.strip()}")
+    bad = os.path.join(work, "allrunBad")
+    os.makedirs(bad)
+    with open(os.path.join(bad, "studyDict"), "w") as f:
+        f.write("""study { case freezeBondTension; allrun (-smoke); }
+knobs { np { option -np; values (0); } }
+figures { first runs[0].simulated_kPa; }
+reference { type none; }
+""")
+    r = run(bad)
+    t = table(bad)
+    check(r.returncode == 3 and t["np-0"]["status"] == "failed" and "-np" in t["np-0"]["error"],
+          f"-np 0 refused by the Allrun, the point failed with its message: {t['np-0']['error']}")
+
+
 tests = {"skip": test_skip, "rerun": test_rerun, "resume": test_resume, "failed": test_failed,
-         "atomic": test_atomic, "badDict": test_bad_dict, "lock": test_lock, "ranks": test_ranks}
+         "atomic": test_atomic, "badDict": test_bad_dict, "lock": test_lock, "ranks": test_ranks,
+         "scatter": test_scatter, "allrun": test_allrun}
 tests[test]()
 check.finish()
