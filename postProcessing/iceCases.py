@@ -24,8 +24,20 @@ SHARED = os.path.join(os.path.dirname(TOP), "shared")
 BUILD = os.path.join(TOP, "build")
 
 
+_COMMENT_OR_STRING = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:[^"\\\n]|\\.)*"', re.S)
+
+
+def _mask_comments(text):
+    """text with its // and /* */ comments blanked (the same length, newlines kept), so that a
+    keyword or a brace written in a comment is never taken for an entry."""
+    def blank(m):
+        return m.group(0) if m.group(0).startswith('"') else re.sub(r"[^\n]", " ", m.group(0))
+    return _COMMENT_OR_STRING.sub(blank, text)
+
+
 def _block_span(text, start, name):
     """(open, close) indices of the braces of sub-dictionary `name` in text[start:close]."""
+    text = _mask_comments(text)
     pattern = re.compile(r"(^|[\s;{}])" + re.escape(name) + r"(?:\s|//[^\n]*)*\{", re.M)
     depth_ok = None
     for m in pattern.finditer(text, start):
@@ -49,6 +61,7 @@ def _block_span(text, start, name):
 
 
 def _entry_value_span(text, dotted, path):
+    text = _mask_comments(text)
     *dicts, key = dotted.split(".")
     start, end = 0, len(text)
     for name in dicts:
