@@ -399,9 +399,25 @@ class Runner:
             message = error_tail(err)
             if message == "no message in the log":
                 message = error_tail(log)
+            if self.study.allrun is not None:   # the application's own error, from the run's log the Allrun names
+                cause = self.allrun_cause(case)
+                if cause:
+                    message = cause + " | " + message
             p.state["error"] = f"exit {proc.returncode}: " + message.replace(self.runs + os.sep, "runs/")
         self.save_state(p)
         return p
+
+    @staticmethod
+    def allrun_cause(case):
+        """The first application error (a FATAL block) among the logs an Allrun left in its case."""
+        for folder, _, names in sorted(os.walk(case)):
+            for name in sorted(names):
+                if name.startswith("log."):
+                    path = os.path.join(folder, name)
+                    with open(path, errors="replace") as f:
+                        if "FATAL" in f.read():
+                            return f"{os.path.relpath(path, case)}: " + error_tail(path, lines=2)
+        return None
 
     def post_process(self, p, case):
         """Runs the study's postProcess on the finished point; None, or the failure's message."""
