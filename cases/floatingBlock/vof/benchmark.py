@@ -5,9 +5,9 @@ in copies under runs/benchmark/; cfd and vof run back to back, --pairs times,
 so that both see the same load on this shared machine. Wall clock per
 simulated second of each, the ratio of each pair and its median.
 
-    /usr/bin/python3 benchmark.py [--end-time 3] [--pairs 3] [--out results/benchmark]
+    /usr/bin/python3 benchmark.py [--end-time 3] [--pairs 3] [--out ../runs/benchmark/benchmark] [--publish]
 
-Writes OUT.json and OUT.md."""
+Writes OUT.json and OUT.md (not tracked); --publish copies them into results/."""
 import argparse
 import json
 import os
@@ -19,7 +19,7 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "..", "postProcessing"))
-from iceCases import write_atomically  # noqa: E402
+from iceCases import publish_files, write_atomically  # noqa: E402
 
 
 def run(level, end_time, k):
@@ -43,8 +43,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--end-time", type=float, default=3)
     ap.add_argument("--pairs", type=int, default=3)
-    ap.add_argument("--out", default=os.path.join(here, "results", "benchmark"))
+    ap.add_argument("--out", default=os.path.join(here, "..", "runs", "benchmark", "benchmark"),
+                    help="OUT.json and OUT.md (default ../runs/benchmark/benchmark: not tracked)")
+    ap.add_argument("--publish", action="store_true",
+                    help="run nothing; copy OUT.json and OUT.md into results/ (committed)")
     args = ap.parse_args()
+    if args.publish:
+        publish_files([args.out + ".json", args.out + ".md"], os.path.join(here, "results"))
+        return
     pairs = []
     for k in range(args.pairs):
         cfd = run("cfd", args.end_time, k)

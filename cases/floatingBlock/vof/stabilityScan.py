@@ -6,9 +6,9 @@ a copy under runs/stability/; per T_c: the highest flow and interface Courant
 numbers, whether alpha.water stayed within [0, 1] (to 1e-6), the submerged
 fraction, whether the block came to rest and its heave over the last second.
 
-    /usr/bin/python3 stabilityScan.py [--times-ms 20,40,60,80] [--end-time 8] [--out results/stability]
+    /usr/bin/python3 stabilityScan.py [--times-ms 20,40,60,80] [--end-time 8] [--out ../runs/stability/stability] [--publish]
 
-Writes OUT.json and OUT.md."""
+Writes OUT.json and OUT.md (not tracked); --publish copies them into results/."""
 import argparse
 import csv
 import json
@@ -20,7 +20,7 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "..", "postProcessing"))
-from iceCases import write_atomically  # noqa: E402
+from iceCases import publish_files, write_atomically  # noqa: E402
 
 
 def run(t_ms, end_time, dem_step=2.5e-5):
@@ -67,8 +67,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--times-ms", default="20,40,60,80")
     ap.add_argument("--end-time", type=float, default=8)
-    ap.add_argument("--out", default=os.path.join(here, "results", "stability"))
+    ap.add_argument("--out", default=os.path.join(here, "..", "runs", "stability", "stability"),
+                    help="OUT.json and OUT.md (default ../runs/stability/stability: not tracked)")
+    ap.add_argument("--publish", action="store_true",
+                    help="run nothing; copy OUT.json and OUT.md into results/ (committed)")
     args = ap.parse_args()
+    if args.publish:
+        publish_files([args.out + ".json", args.out + ".md"], os.path.join(here, "results"))
+        return
     rows = []
     for t in [int(x) for x in args.times_ms.split(",")]:
         rows.append(run(t, args.end_time))
