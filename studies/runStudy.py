@@ -33,6 +33,7 @@ import itertools
 import json
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -89,6 +90,12 @@ def input_files(study):
                 inner = os.path.relpath(rel, os.path.join("cases", case)).split(os.sep)[0]
                 if inner not in ("results", "README.md", "studies"):
                     files[rel] = _hash_file(os.path.join(iceCases.TOP, rel))
+        for stage in study.stages:   # the saved stages (HDF5) a point reuses instead of building them
+            for folder, dirs, names in os.walk(os.path.join(iceCases.TOP, stage)):
+                dirs.sort()
+                for name in sorted(n for n in names if n.endswith(".h5")):
+                    path = os.path.join(folder, name)
+                    files["stage:" + os.path.relpath(path, iceCases.TOP)] = _hash_file(path)
         return files
     for sub in ("constant", "system", "DEM"):
         for folder, dirs, names in os.walk(os.path.join(study.case, sub)):
@@ -289,6 +296,9 @@ class Runner:
             case, _ = caseMirror.make_mirror(iceCases.TOP, getattr(self.study, "build", iceCases.BUILD),
                                              self.folder(p), self.study.case_name,
                                              name="mirror", others=self.study.siblings, skip=("results",))
+            for stage in self.study.stages:   # a keel built once, reused by every point (its Allrun checks it)
+                shutil.copytree(os.path.join(iceCases.TOP, stage), os.path.join(self.folder(p), "mirror", stage),
+                                dirs_exist_ok=True)
         else:
             case = iceCases.copy_case(self.study.case, self.case(p))
         for file, dotted, value, create in self.study.fixed + with_entries(self.study, p):

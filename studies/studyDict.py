@@ -372,7 +372,7 @@ def read_study(path):
     s.folder = os.path.dirname(path)
 
     st = top.subdict("study")
-    st.check_keys({"case", "application", "allrun", "summary", "siblings", "cores", "ranks", "arguments",
+    st.check_keys({"case", "application", "allrun", "summary", "siblings", "stages", "cores", "ranks", "arguments",
                    "description", "postProcess"})
     case = st.word("case")
     candidates = [os.path.join(s.folder, case), os.path.join(TOP, "cases", case)] if not os.path.isabs(case) else [case]
@@ -397,13 +397,18 @@ def read_study(path):
         if not re.fullmatch(r"\w+", s.application):
             raise st.error("application", f"needs the name of an application in build/demModels, got "
                                           f"'{s.application}'")
-        for key in ("summary", "siblings"):
+        for key in ("summary", "siblings", "stages"):
             if st.found(key):
                 raise st.error(key, "only with 'allrun' (an application writes postProcessing/summary.json)")
     s.summary = st.word("summary", default="postProcessing/summary.json")
     if os.path.isabs(s.summary) or ".." in s.summary.split("/") or not s.summary.endswith(".json"):
         raise st.error("summary", f"needs a .json file inside the case, got '{s.summary}'")
     s.siblings = st.items("siblings") if st.found("siblings") else []
+    s.stages = st.items("stages") if st.found("stages") else []
+    for stage in s.stages:
+        if os.path.isabs(stage) or ".." in stage.split("/") or not stage.startswith("cases/"):
+            raise st.error("stages", f"needs folders under cases/ of this checkout (cases/ridgeFlexure/keels/keel0.5), "
+                                     f"got '{stage}'")
     for sibling in s.siblings:
         if not os.path.isdir(os.path.join(TOP, "cases", sibling)):
             raise st.error("siblings", f"no case cases/{sibling}")
@@ -558,8 +563,13 @@ def _read_scatter(sd, s, path):
 
 
 def missing_includes(study):
-    """StudyDictErrors of the #include entries whose file is not there."""
-    return [block.error(key, f"no file {path} (the path is relative to the case file's folder, as the case's own "
+    """StudyDictErrors of the #include entries whose file is not there, and of the saved stages
+    (study.stages) not built yet."""
+    stages = [StudyDictError(study.dict_path, 0, "study.stages", f"no saved stage {stage} in this checkout: run the "
+                             f"Allrun of the case that builds it first (e.g. cases/keelBond/Allrun builds "
+                             f"cases/ridgeFlexure/keels/keel0.5)")
+              for stage in getattr(study, "stages", []) if not os.path.isdir(os.path.join(TOP, stage))]
+    return stages + [block.error(key, f"no file {path} (the path is relative to the case file's folder, as the case's own "
                              "#include lines; a generated dictionary is written by the step that makes it)")
             for block, key, path in study.includes if not os.path.isfile(path)]
 

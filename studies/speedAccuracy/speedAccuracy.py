@@ -52,7 +52,9 @@ SCENES = (
     ("Freeze-bond tension (scenes.md 3)", "freezeBondTension", 0.05, ("slope30", "slope180")),
     ("Freeze-bond shear: the calibration sweep (scenes.md 4)", "freezeBondShear", 0.05, ("slope", "intercept")),
     ("Rubble beam: settling (scenes.md 5)", "rubbleBeam", 0.05, ("aboveWater",)),
+    ("Rubble punch: the cuboid keel's first 30 mm (scenes.md 6)", "rubblePunch", 0.05, ("peakForce",)),
     ("Ridge flexure: run 6, quick resolution (scenes.md 7)", "ridgeFlexure", 0.05, ("failureForce",)),
+    ("Keel-to-layer bond (scenes.md 8)", "keelBond", 0.05, ("pullUp", "shear")),
     ("Settling sphere (scenes.md 9)", "sphereSettling", 0.01, ("terminalVelocity", "worstDeviation=self")),
 )
 
@@ -84,10 +86,6 @@ EXTRAS = (
 
 # scenes without a runner study yet, and why (shown on the page)
 MISSING = (
-    ("Rubble punch (scenes.md 6)", "a point is a keel (settle, compact, bond) and 100 mm at 5 mm/s: 14-31 min on 1 "
-     "rank; its rate ladder on the reduced keel is the case's own study, below"),
-    ("Keel-to-layer bond (scenes.md 8)", "a point rebuilds the 0.5 m keel (about 10 min on 2 ranks) before its two "
-     "tests; not run yet"),
     ("Floating block (scenes.md 9)", "20 s of floating take 8 min on 2 ranks at the hydrostatic level; its answer at "
      "each water level against Archimedes, with the cost, is the water-level chart below"),
 )
