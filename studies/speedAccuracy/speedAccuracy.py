@@ -3,13 +3,14 @@
 summary chart of each scene's default configuration and its cheapest configuration within the
 scene's tolerance, and the measured stability limits beside them.
 
-usage: speedAccuracy.py run [-quick] [-jobs N]           every scene's study (runStudy.py), then build
-       speedAccuracy.py [build] [-quick] [-out FOLDER] [-readme]   the page from the studies' tables
+usage: speedAccuracy.py run [-quick] [-jobs N] [-work DIR] [-out FOLDER]   every scene's study, then build
+       speedAccuracy.py [build] [-quick] [-work DIR] [-out FOLDER] [-readme]   the page from the studies' tables
        speedAccuracy.py check PAGE [-screenshot PNG]      opens PAGE in headless Chromium and checks it
 
 run runs each scene's study of SCENES in turn (studies/runStudy.py STUDY -jobs: N divided by the
 cores a point takes), finished points skipped; -quick runs each study's quick ladder (tables in
-studies/<study>/quick/, the page then in studies/speedAccuracy/quick/; about 20 minutes on 2 cores).
+studies/<study>/quick/, the page then in studies/speedAccuracy/quick/); -work DIR runs them in
+DIR/<study> instead, away from the committed studies' runs (a fresh ladder, timed whole).
 
 build (the default) reads each runner study's results/table.csv (studies/<study>/, SCENES below),
 the cases' own ladders and the measurement scripts' tables (EXTRAS), and writes into -out (default
@@ -101,8 +102,13 @@ def _float(text):
         return float("nan")
 
 
-def read_table(folder, quick=False):
-    path = os.path.join(TOP, "studies", folder, "quick" if quick else "results", "table.csv")
+def tables_folder(study, quick=False, work=None):
+    """Where a study's table and chart are: studies/<study>/results (quick/ for -quick), or under -work."""
+    return os.path.join(work or os.path.join(TOP, "studies"), study, "quick" if quick else "results")
+
+
+def read_table(folder):
+    path = os.path.join(folder, "table.csv")
     if not os.path.isfile(path):
         return None
     with open(path) as f:
@@ -165,9 +171,10 @@ def committed_default(rows, figures, external):
     return row
 
 
-def scene_summary(title, folder, tolerance, figures, external_default=None, quick=False):
-    rows = read_table(folder, quick)
-    out = {"scene": title, "study": folder, "tolerance": tolerance, "figures": figures, "rows": rows}
+def scene_summary(title, folder, tolerance, figures, external_default=None, tables=None):
+    rows = read_table(tables)
+    out = {"scene": title, "study": folder, "tolerance": tolerance, "figures": figures, "rows": rows,
+           "tables": tables}
     if not rows:
         return out
     knobs = knob_names(rows)
@@ -180,7 +187,7 @@ def scene_summary(title, folder, tolerance, figures, external_default=None, quic
     cheapest = min(good, key=lambda r: _float(r["wall_s"])) if good else None
     best = min(done, key=lambda r: judged_error(r, figures)) if done else None
     scatter = {f: _float(rows[0].get(f + "_scatter")) for f in figures if f + "_scatter" in rows[0]}
-    out.update(quick=quick, knobs=knobs, default=default, cheapest=cheapest, best=best, scatter=scatter,
+    out.update(tables=tables, knobs=knobs, default=default, cheapest=cheapest, best=best, scatter=scatter,
                reference=rows[0].get("reference", ""), points=len([r for r in rows if r["status"] == "done"]),
                revision=sorted({r["git_revision"] for r in rows if r["git_revision"]}),
                finished=max((r["finished_at"] for r in rows if r["finished_at"]), default=""))
@@ -402,7 +409,7 @@ section { border-top: 2px solid #88a; margin-top: 1.5em; } code { background: #f
 
 def write_page(scenes, summary_md, out):
     def img(rel):
-        path = os.path.relpath(os.path.join(TOP, rel), out)
+        path = os.path.relpath(os.path.join(TOP, rel), out)   # rel may be absolute: join keeps it
         return f'<p><img src="{html.escape(path)}" alt="{html.escape(rel)}"></p>'
     now = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>iceRidgeSim: speed against accuracy</title>",
@@ -422,7 +429,7 @@ def write_page(scenes, summary_md, out):
                      f"{html.escape(s['reference'])}; tolerance {100 * s['tolerance']:g} % on "
                      f"{judged_names(s['figures'])}" + (f"; seed scatter (relative sd) {scatter}" if scatter else "")
                      + ".</p>")
-        parts.append(img(f"studies/{s['study']}/{'quick' if s.get('quick') else 'results'}/study.png"))
+        parts.append(img(os.path.join(s["tables"], "study.png")))
         parts.append(table_of_points(s))
         parts.append("</section>")
     parts.append("<section class='extra'><h2>Scenes without a runner study</h2>" + markdown_html(
@@ -451,7 +458,8 @@ def run(args):
         study = studyDict.read_study(os.path.join(TOP, "studies", folder))
         jobs = max(1, args.jobs // study.cores)
         cmd = [sys.executable, os.path.join(TOP, "studies", "runStudy.py"), os.path.join(TOP, "studies", folder),
-               "-jobs", str(jobs)] + (["-quick"] if args.quick else [])
+               "-jobs", str(jobs)] + (["-quick"] if args.quick else []) \
+            + (["-out", os.path.join(os.path.abspath(args.work), folder)] if args.work else [])
         print(f"speedAccuracy: {title}: {' '.join(cmd[1:])}", flush=True)
         code = subprocess.run(cmd).returncode
         if code in (1, 2, 143):   # a bad dictionary, another runner, stopped: no page from a half run
@@ -462,16 +470,18 @@ def run(args):
 
 
 def build(args):
-    out = os.path.abspath(args.out or os.path.join(HERE, "quick" if args.quick else ""))
+    default = os.path.join(args.work, "speedAccuracy") if args.work else os.path.join(HERE, "quick" if args.quick else "")
+    out = os.path.abspath(args.out or default)
     os.makedirs(out, exist_ok=True)
-    scenes = [scene_summary(*s[:4], external_default=s[4] if len(s) > 4 else None, quick=args.quick)
+    scenes = [scene_summary(*s[:4], external_default=s[4] if len(s) > 4 else None,
+                            tables=tables_folder(s[1], args.quick, args.work and os.path.abspath(args.work)))
               for s in SCENES]
     rows = summary_rows(scenes)
     summary_md = write_summary(rows, out)
     plot_summary(rows, os.path.join(out, "summary.png"))
     write_page(scenes, summary_md, out)
     print(f"speedAccuracy: {os.path.join(out, 'index.html')}, summary.png, summary.csv, summary.md")
-    if args.readme and not args.quick:
+    if args.readme and not args.quick and not args.work:
         readme = os.path.join(TOP, "README.md")
         text = open(readme).read()
         if README_BEGIN not in text or README_END not in text:
@@ -544,6 +554,8 @@ def main():
     p.add_argument("page", nargs="?", help="check: the page to open")
     p.add_argument("-out")
     p.add_argument("-quick", action="store_true")
+    p.add_argument("-work", help="run: each study's runs and tables in WORK/<study> (-out of runStudy.py); "
+                                 "build: the tables from there")
     p.add_argument("-jobs", type=iceCases.whole_number(1), default=2)
     p.add_argument("-readme", action="store_true")
     p.add_argument("-screenshot")

@@ -2,7 +2,7 @@
 """Tests of the parametric-study runner (studies/runStudy.py) on small level-ice beams.
 
 usage: studyTests.py TEST WORKDIR BINDIR
-  TEST: skip | rerun | resume | failed | atomic | badDict | lock | ranks | scatter | allrun
+  TEST: dictionaries | skip | rerun | resume | failed | atomic | badDict | lock | ranks | scatter | allrun
   WORKDIR: an empty folder of the build tree (removed first)
   BINDIR: the folder of iceBeamDEM
 
@@ -431,6 +431,18 @@ reference { type summary; keys { first runs[0].mean_kPa; second runs[1].mean_kPa
               f"{label}: a figure without reference has no error; 2 cores")
         d = iceCases.get_entry(os.path.join(case, "constant", "tensionTestProperties"), "specimen.particleDiameter")
         check(d.strip() == x["particleDiameter"], f"{label}: the mirror's case runs diameter {d.strip()}")
+    stage = os.path.join(work, "allrunStage")
+    os.makedirs(stage)
+    with open(os.path.join(stage, "studyDict"), "w") as f:
+        f.write("""study { case freezeBondTension; allrun (-smoke); stages ("cases/freezeBondTension/keels/none"); }
+knobs { np { option -np; values (1); } }
+figures { first runs[0].simulated_kPa; }
+reference { type none; }
+""")
+    r = run(stage)
+    check(r.returncode == 1 and "no saved stage cases/freezeBondTension/keels/none" in r.stderr
+          and not os.path.isdir(os.path.join(stage, "runs", "np-1")),
+          f"a saved stage that is not built refused before any point runs: {r.stderr.strip()[:160]}")
     bad = os.path.join(work, "allrunBad")
     os.makedirs(bad)
     with open(os.path.join(bad, "studyDict"), "w") as f:
@@ -445,7 +457,37 @@ reference { type none; }
           f"-np 0 refused by the Allrun, the point failed with its message: {t['np-0']['error']}")
 
 
-tests = {"skip": test_skip, "rerun": test_rerun, "resume": test_resume, "failed": test_failed,
+def test_dictionaries():
+    """Every committed study dictionary still reads against its case (an entry the case renamed, a
+    value no longer valid), and its committed table has a column for each knob and figure."""
+    import glob
+    sys.path.insert(0, os.path.join(TOP, "studies"))
+    import studyDict
+    paths = sorted(p for p in glob.glob(os.path.join(TOP, "studies", "*", "studyDict"))
+                   + glob.glob(os.path.join(TOP, "cases", "*", "**", "studyDict"), recursive=True)
+                   if "runs" not in os.path.relpath(p, TOP).split(os.sep))   # not the points' copies
+    check(len(paths) >= 8, f"{len(paths)} study dictionaries found")
+    for path in paths:
+        rel = os.path.relpath(path, TOP)
+        try:
+            study = studyDict.read_study(path)
+        except studyDict.StudyDictError as e:
+            check(False, f"{rel}: {e}")
+            continue
+        table = os.path.join(os.path.dirname(path), "results", "table.csv")
+        if not os.path.isfile(table):
+            print(f"  {rel}: reads; no committed table")
+            continue
+        with open(table) as f:
+            columns = next(csv.reader(f))
+        wanted = [k.name for k in study.knobs] + [n for n, _ in study.figures]
+        if study.scatter:
+            wanted += [study.scatter.name, "is_scatter"]
+        missing = [w for w in wanted if w not in columns]
+        check(not missing, f"{rel}: reads; its table has every knob and figure{' (missing ' + ', '.join(missing) + ')' if missing else ''}")
+
+
+tests = {"dictionaries": test_dictionaries, "skip": test_skip, "rerun": test_rerun, "resume": test_resume, "failed": test_failed,
          "atomic": test_atomic, "badDict": test_bad_dict, "lock": test_lock, "ranks": test_ranks,
          "scatter": test_scatter, "allrun": test_allrun}
 tests[test]()
