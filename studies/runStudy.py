@@ -260,6 +260,9 @@ class Runner:
         return os.path.join(self.folder(p), self.study.case_name)
 
     def summary_file(self, p):
+        if self.study.summary_by:   # the path that the point's value of a knob names
+            by, table = self.study.summary_by
+            return os.path.join(self.case(p), table[p.values[by]])
         return os.path.join(self.case(p), self.study.summary)
 
     def finished(self, p):

@@ -400,9 +400,19 @@ def read_study(path):
         for key in ("summary", "siblings", "stages"):
             if st.found(key):
                 raise st.error(key, "only with 'allrun' (an application writes postProcessing/summary.json)")
-    s.summary = st.word("summary", default="postProcessing/summary.json")
-    if os.path.isabs(s.summary) or ".." in s.summary.split("/") or not s.summary.endswith(".json"):
-        raise st.error("summary", f"needs a .json file inside the case, got '{s.summary}'")
+    # the summary: one path, or `summary { by KNOB; VALUE "path"; ... }` where it depends on a knob's
+    # value (the floating block's water level writes cfd/postProcessing/summary.json)
+    s.summary, s.summary_by = "postProcessing/summary.json", None
+    if st.found("summary") and st.entries["summary"].kind == "dict":
+        sd = st.subdict("summary")
+        s.summary_by = (sd.word("by"), {v: sd.word(v) for v in sd.keys() if v != "by"})
+        paths = list(s.summary_by[1].values())
+    else:
+        s.summary = st.word("summary", default=s.summary)
+        paths = [s.summary]
+    for path_ in paths:
+        if os.path.isabs(path_) or ".." in path_.split("/") or not path_.endswith(".json"):
+            raise st.error("summary", f"needs a .json file inside the case, got '{path_}'")
     s.siblings = st.items("siblings") if st.found("siblings") else []
     s.stages = st.items("stages") if st.found("stages") else []
     for stage in s.stages:
@@ -447,6 +457,15 @@ def read_study(path):
                 raise kd.subdict(knob.name).error("template", "a '$' only as ${knob} or ${STUDY}")
 
     s.scatter, s.scatter_at = (None, None) if not top.found("scatter") else _read_scatter(top.subdict("scatter"), s, path)
+    if s.summary_by:
+        by, table = s.summary_by
+        knob = next((k for k in s.knobs if k.name == by), None)
+        if knob is None:
+            raise st.subdict("summary").error("by", f"'{by}' names no knob ({', '.join(k.name for k in s.knobs)})")
+        missing = [v for v in knob.values if v not in table]
+        if missing:
+            raise StudyDictError(path, st.subdict("summary").line, "study.summary",
+                                 f"no path for {by} {', '.join(missing)}")
     s.fixed = _fixed_entries(top.subdict("set"), s) if top.found("set") else []
     # the knobs' `with` blocks were read before `set`: their includes are in s.includes too
 

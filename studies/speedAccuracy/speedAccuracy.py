@@ -56,6 +56,7 @@ SCENES = (
     ("Rubble punch: the cuboid keel's first 30 mm (scenes.md 6)", "rubblePunch", 0.05, ("peakForce",)),
     ("Ridge flexure: run 6, quick resolution (scenes.md 7)", "ridgeFlexure", 0.05, ("failureForce",)),
     ("Keel-to-layer bond (scenes.md 8)", "keelBond", 0.05, ("pullUp", "shear")),
+    ("Floating block: the water level (scenes.md 9)", "floatingBlock", 0.01, ("submerged",)),
     ("Settling sphere (scenes.md 9)", "sphereSettling", 0.01, ("terminalVelocity", "worstDeviation=self")),
 )
 
@@ -85,11 +86,8 @@ EXTRAS = (
      (), None, "`studies/rankSpeedup`, `studies/scaling`."),
 )
 
-# scenes without a runner study yet, and why (shown on the page)
-MISSING = (
-    ("Floating block (scenes.md 9)", "20 s of floating take 8 min on 2 ranks at the hydrostatic level; its answer at "
-     "each water level against Archimedes, with the cost, is the water-level chart below"),
-)
+# scenes without a runner study yet, and why (shown on the page): none now
+MISSING = ()
 
 README_BEGIN, README_END = "<!-- speed accuracy table -->", "<!-- end speed accuracy table -->"
 
@@ -432,8 +430,9 @@ def write_page(scenes, summary_md, out):
         parts.append(img(os.path.join(s["tables"], "study.png")))
         parts.append(table_of_points(s))
         parts.append("</section>")
-    parts.append("<section class='extra'><h2>Scenes without a runner study</h2>" + markdown_html(
-        "\n".join(f"- **{title}**: {why}." for title, why in MISSING)) + "</section>")
+    if MISSING:
+        parts.append("<section class='extra'><h2>Scenes without a runner study</h2>" + markdown_html(
+            "\n".join(f"- **{title}**: {why}." for title, why in MISSING)) + "</section>")
     for title, tables, charts, csv_file, what in EXTRAS:
         parts.append(f"<section class='extra'><h2>{html.escape(title)}</h2><p class='note'>{inline(what)}</p>")
         for t in tables:
