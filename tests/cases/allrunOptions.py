@@ -68,8 +68,11 @@ SCRIPTS = {
     "cases/ridgeFlexure/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-jobs", "x"], "-jobs"), (["-runs", "0"], "-runs"),
          (["-runs", "1,17"], "-runs"), (["-runs", "a"], "-runs"), (["-runs", "1,,2"], "-runs"),
-         (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke")],
-        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-publish"],
+         (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke"),
+         (["-speed", "0"], "-speed"), (["-speed", "0.1m/s"], "-speed"), (["-speed", "0.1", "-publish"], "-speed"),
+         (["-speed", "0.1", "-water", "cfd"], "-speed")],
+        [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-runs", "6", "-speed", "0.05"],
+         ["-quick", "-publish"],
          ["-water", "cfd", "-runs", "6,14", "-publish"]]),
     "cases/ridgeDesignMap/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-data"], "-data"), (["-data", "foo=bar.csv"], "-data"),

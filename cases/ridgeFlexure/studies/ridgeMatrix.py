@@ -63,6 +63,10 @@ QUICK = {
     "assembly.pressSpeed": 0.05,
 }
 
+# The platen speed of this invocation (--speed), over the case's and the quick settings' own; its runs
+# go to runs/<resolution>-speed<V>/, apart from the matrix at the resolution's own speed.
+SPEED = None
+
 # The smoke resolution: the small keels' box and a short travel (system/controlDict).
 SMOKE_BOX = (1.6, 0.4)
 SMOKE_CONTROLS = {"maxTravel": 0.01, "minTravel": 0}
@@ -88,10 +92,14 @@ def layers_alone(runs):
     return [{"run": 0, "keel": "none", "set": runs[0]["set"], "cl_cm": cm, "alone": True} for cm in thicknesses]
 
 
+def runs_folder(resolution):
+    return os.path.join(CASE, "runs", resolution + ("-speed%g" % SPEED if SPEED else ""))
+
+
 def run_dir(run, resolution):
     if run.get("alone"):
-        return os.path.join(CASE, "runs", resolution, "layerAlone_CL%d" % run["cl_cm"])
-    return os.path.join(CASE, "runs", resolution,
+        return os.path.join(runs_folder(resolution), "layerAlone_CL%d" % run["cl_cm"])
+    return os.path.join(runs_folder(resolution),
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
 
@@ -115,6 +123,8 @@ def prepare(run, resolution, target):
         for entry, value in QUICK.items():
             if "." in entry:
                 iceCases.set_entry(props, entry, value)
+    if SPEED:
+        iceCases.set_entry(props, "test.speed", SPEED)
     if resolution == "smoke":
         iceCases.set_entry(props, "box.length", SMOKE_BOX[0])
         iceCases.set_entry(props, "box.width", SMOKE_BOX[1])
@@ -369,7 +379,14 @@ def main():
                         help="comma-separated run numbers (default: all 16)")
     parser.add_argument("--publish", action="store_true",
                         help="run nothing; write the table of all 16 finished runs into results/")
+    parser.add_argument("--speed", type=iceCases.positive_number,
+                        help="platen speed in m/s instead of the resolution's own (quick: 0.2; default: the "
+                             "case's test.speed); the runs go to runs/<resolution>-speed<V>/")
     args = parser.parse_args()
+    global SPEED
+    SPEED = args.speed
+    if args.publish and SPEED:
+        parser.error("argument --publish: publishes the matrix at the resolution's own speed (not with --speed)")
 
     runs = matrix()
     if args.publish:
@@ -433,7 +450,7 @@ def main():
     # The table of every finished run of the folder (runs of earlier invocations too).
     rows = table_rows([r for r in matrix() if analysed(r, args.resolution)], args.resolution)
     if rows:
-        base = write_table(rows, args.resolution, os.path.join(CASE, "runs", args.resolution))
+        base = write_table(rows, args.resolution, runs_folder(args.resolution))
         plot(rows, base)
         print("Results: %s.csv, %s.md, %s.png (%s in all)"
               % (base, base, base, time.strftime("%H:%M:%S", time.gmtime(time.time() - started))))
