@@ -52,7 +52,7 @@ SCENES = (
     ("Level-ice beam: time step x damping", "levelIceBeamTimeStep", 0.05, ("slope", "firstPeak")),
     ("Three-point bending (scenes.md 2)", "threePointBending", 0.05, ("strength",)),
     ("Freeze-bond tension (scenes.md 3)", "freezeBondTension", 0.05, ("slope30", "slope180")),
-    ("Freeze-bond shear: the calibration sweep (scenes.md 4)", "freezeBondShear", 0.05, ("slope", "intercept")),
+    ("Freeze-bond shear: the calibration sweep (scenes.md 4)", "freezeBondShear", 0.05, ("slope", "strength")),
     ("Rubble beam: settling (scenes.md 5)", "rubbleBeam", 0.05, ("aboveWater",)),
     ("Rubble punch: the cuboid keel's first 30 mm (scenes.md 6)", "rubblePunch", 0.05, ("peakForce",)),
     ("Ridge flexure: run 6, quick resolution (scenes.md 7)", "ridgeFlexure", 0.05, ("failureForce",)),
