@@ -86,9 +86,11 @@ def input_files(study):
     if study.allrun is not None:   # the Allrun and the case's scripts make the point too (not results/ or README)
         import caseMirror
         for case in [study.case_name] + study.siblings:
+            # a sibling's results/ may be read (the punch reads the rubble beam's summary); the case's own not
+            skipped = ("results", "README.md", "studies") if case == study.case_name else ("README.md",)
             for rel in caseMirror.case_files(iceCases.TOP, os.path.join("cases", case)):
                 inner = os.path.relpath(rel, os.path.join("cases", case)).split(os.sep)[0]
-                if inner not in ("results", "README.md", "studies"):
+                if inner not in skipped:
                     files[rel] = _hash_file(os.path.join(iceCases.TOP, rel))
         for stage in study.stages:   # the saved stages (HDF5) a point reuses instead of building them
             for folder, dirs, names in os.walk(os.path.join(iceCases.TOP, stage)):
@@ -297,8 +299,10 @@ class Runner:
         if self.study.allrun is not None:
             import caseMirror
             case, _ = caseMirror.make_mirror(iceCases.TOP, getattr(self.study, "build", iceCases.BUILD),
-                                             self.folder(p), self.study.case_name,
-                                             name="mirror", others=self.study.siblings, skip=("results",))
+                                             self.folder(p), self.study.case_name, name="mirror", skip=("results",))
+            for sibling in self.study.siblings:   # whole: their results/ may be read
+                caseMirror.copy_folder(iceCases.TOP, os.path.join("cases", sibling),
+                                       os.path.join(self.folder(p), "mirror"))
             for stage in self.study.stages:   # a keel built once, reused by every point (its Allrun checks it)
                 shutil.copytree(os.path.join(iceCases.TOP, stage), os.path.join(self.folder(p), "mirror", stage),
                                 dirs_exist_ok=True)
