@@ -221,7 +221,8 @@ def summary_rows(scenes):
             row.update(default=configuration(d, s["knobs"]), default_wall_s=_float(d["wall_s"]),
                        default_error=judged_error(d, s["figures"]))
         if c:
-            row.update(cheapest=configuration(c, s["knobs"]), cheapest_wall_s=_float(c["wall_s"]),
+            row.update(cheapest=configuration(c, s["knobs"]) + (" (the reference)" if c.get("is_reference") == "1" else ""),
+                       cheapest_wall_s=_float(c["wall_s"]),
                        cheapest_error=judged_error(c, s["figures"]), cheapest_cores=c["ranks"])
         elif b:
             row.update(best=configuration(b, s["knobs"]), best_wall_s=_float(b["wall_s"]),
