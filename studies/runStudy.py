@@ -65,7 +65,8 @@ def make_points(study, quick):
     points = [Point(study, dict(zip([k.name for k in study.knobs], combo))) for combo in itertools.product(*lists)]
     # the scatter: the chosen point again with each other seed, when this run holds the chosen point
     if study.scatter and any(p.values == study.scatter_at for p in points):
-        points += [Point(study, dict(study.scatter_at), seed) for seed in study.scatter.values]
+        seeds = study.scatter.quick if quick and study.scatter.quick is not None else study.scatter.values
+        points += [Point(study, dict(study.scatter_at), seed) for seed in seeds]
     return points
 
 

@@ -562,7 +562,7 @@ def _read_scatter(sd, s, path):
     name = names[0]
     _check_name(sd, name, "scatter knob", [k.name for k in s.knobs])
     knob = _read_knob(sd.subdict(name), name, s, path)
-    for key in ("quick", "finer", "with", "template"):
+    for key in ("finer", "with", "template"):
         if sd.subdict(name).found(key):
             raise sd.subdict(name).error(key, "not for the scatter's knob")
     if knob.case_value in knob.values:
