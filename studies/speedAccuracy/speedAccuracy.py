@@ -460,7 +460,11 @@ def run(args):
     import studyDict
     worst = 0
     for title, folder, *_ in SCENES:
-        study = studyDict.read_study(os.path.join(TOP, "studies", folder))
+        try:
+            study = studyDict.read_study(os.path.join(TOP, "studies", folder))
+        except studyDict.StudyDictError as e:
+            print(f"speedAccuracy: {e}", file=sys.stderr)
+            return 1
         jobs = max(1, args.jobs // study.cores)
         cmd = [sys.executable, os.path.join(TOP, "studies", "runStudy.py"), os.path.join(TOP, "studies", folder),
                "-jobs", str(jobs)] + (["-quick"] if args.quick else []) \
