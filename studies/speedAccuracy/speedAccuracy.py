@@ -9,7 +9,8 @@ usage: speedAccuracy.py run [-quick] [-jobs N] [-work DIR] [-out FOLDER]   every
 
 run runs each scene's study of SCENES in turn (studies/runStudy.py STUDY -jobs: N divided by the
 cores a point takes), finished points skipped; -quick runs each study's quick ladder (tables in
-studies/<study>/quick/, the page then in studies/speedAccuracy/quick/); -work DIR runs them in
+studies/<study>/quick/, the page then in studies/speedAccuracy/quick/; 26 points, 8 min 47 s on
+2 cores with the keels built, 2026-11-28); -work DIR runs them in
 DIR/<study> instead, away from the committed studies' runs (a fresh ladder, timed whole).
 
 build (the default) reads each runner study's results/table.csv (studies/<study>/, SCENES below),
