@@ -36,8 +36,8 @@ def _mask_comments(text):
 
 
 def _block_span(text, start, name):
-    """(open, close) indices of the braces of sub-dictionary `name` in text[start:close]."""
-    text = _mask_comments(text)
+    """(open, close) indices of the braces of sub-dictionary `name` in text[start:close]; text is
+    the dictionary with its comments masked (_mask_comments), so that the indices are the file's."""
     pattern = re.compile(r"(^|[\s;{}])" + re.escape(name) + r"(?:\s|//[^\n]*)*\{", re.M)
     depth_ok = None
     for m in pattern.finditer(text, start):
@@ -117,6 +117,7 @@ def get_entry(path, dotted):
         return text[begin:end]
     except KeyError:
         pass
+    text = _mask_comments(text)   # the includes and braces of the file's structure, not of its comments
     parts = dotted.split(".")
     start, end = 0, len(text)
     for depth in range(len(parts)):
@@ -184,10 +185,11 @@ def _with_override(text, dotted, value):
     """text with `a { b { key value; } }` added: into the deepest of a, a.b, ... that
     it has, otherwise before its closing `// ****` line (or at its end)."""
     *dicts, key = dotted.split(".")
+    masked = _mask_comments(text)
     start, insert_at, depth = 0, None, 0
     for name in dicts:
         try:
-            open_brace, close_brace = _block_span(text[:insert_at or len(text)], start, name)
+            open_brace, close_brace = _block_span(masked[:insert_at or len(masked)], start, name)
         except KeyError:
             break
         start, insert_at, depth = open_brace + 1, close_brace, depth + 1

@@ -51,7 +51,7 @@ class DictionaryEditTest(unittest.TestCase):
             f.write("timeStep\n{\n    factor 0.25;   // timeStep { factor 9; }\n}\n")
         case = os.path.join(self.folder, "case")
         with open(case, "w") as f:
-            f.write('#include "common"\n')
+            f.write('// the common timeStep {, shared by every case\n#include "common"\n')
         self.assertEqual(iceCases.get_entry(case, "timeStep.factor"), "0.25")
         iceCases.set_entry(case, "timeStep.factor", 0.125)
         self.assertEqual(iceCases.get_entry(case, "timeStep.factor"), "0.125")
