@@ -35,6 +35,7 @@ import os
 import re
 import shutil
 import signal
+import statistics
 import subprocess
 import sys
 import threading
@@ -567,9 +568,8 @@ class Runner:
             if len(values) < 2:
                 out[name] = float("nan")
                 continue
-            mean = sum(values) / len(values)
-            var = sum((v - mean) ** 2 for v in values) / (len(values) - 1)
-            out[name] = var ** 0.5 / abs(mean) if mean else float("nan")
+            mean = statistics.mean(values)
+            out[name] = statistics.stdev(values) / abs(mean) if mean else float("nan")
         return out
 
     def write_tables(self):

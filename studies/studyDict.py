@@ -587,7 +587,7 @@ def missing_includes(study):
     stages = [StudyDictError(study.dict_path, 0, "study.stages", f"no saved stage {stage} in this checkout: run the "
                              f"Allrun of the case that builds it first (e.g. cases/keelBond/Allrun builds "
                              f"cases/ridgeFlexure/keels/keel0.5)")
-              for stage in getattr(study, "stages", []) if not os.path.isdir(os.path.join(TOP, stage))]
+              for stage in study.stages if not os.path.isdir(os.path.join(TOP, stage))]
     return stages + [block.error(key, f"no file {path} (the path is relative to the case file's folder, as the case's own "
                              "#include lines; a generated dictionary is written by the step that makes it)")
             for block, key, path in study.includes if not os.path.isfile(path)]

@@ -89,9 +89,8 @@ def plot(runner, rows, path):
             if others:
                 ax.scatter([o[0] for o in others], [o[1] for o in others], marker="x", s=14, color="grey",
                            label=f"chosen point, other {study.scatter.name}s")
-            sd = next((r.get(name + "_scatter") for r in done if r.get(name + "_scatter") == r.get(name + "_scatter")
-                       and r.get(name + "_scatter") is not None), None)
-            if sd:
+            sd = done[0].get(name + "_scatter")   # the same on every row (NaN until two seeds are done)
+            if sd and sd == sd:
                 ax.axhspan(1e-3, 200 * sd, color="grey", alpha=0.15, lw=0,
                            label=f"within 2 sd of the {study.scatter.name}s ({100 * sd:.2g} %)")
             for w, e, r in pts:

@@ -31,6 +31,7 @@ import argparse
 import csv
 import datetime
 import html
+import json
 import os
 import re
 import subprocess
@@ -146,18 +147,9 @@ def judged_error(row, figures):
     return max(abs(e) for e in errors)
 
 
-def within(row, figures, tolerance):
-    for f in figures:
-        e = abs(figure_error(row, f))
-        if not e <= tolerance:
-            return False
-    return True
-
-
 def committed_default(rows, figures, external):
     """The case's committed run as a row of the study's table, its errors against the study's
     reference (each figure's reference recovered from a finished row: value / (1 + error))."""
-    import json
     path, keys, config = external
     summary = json.load(open(os.path.join(TOP, path)))
     row = {"point": config, "is_case_default": "1", "is_scatter": "0", "status": "done", "config": config,
@@ -183,11 +175,11 @@ def scene_summary(title, folder, tolerance, figures, external_default=None, tabl
     default = next((r for r in rows if r.get("is_case_default") == "1"), None)
     if default is None and external_default:
         default = committed_default(rows, figures, external_default)
-    good = [r for r in done if within(r, figures, tolerance)]
+    good = [r for r in done if judged_error(r, figures) <= tolerance]
     cheapest = min(good, key=lambda r: _float(r["wall_s"])) if good else None
     best = min(done, key=lambda r: judged_error(r, figures)) if done else None
     scatter = {f: _float(rows[0].get(f + "_scatter")) for f in figures if f + "_scatter" in rows[0]}
-    out.update(tables=tables, knobs=knobs, default=default, cheapest=cheapest, best=best, scatter=scatter,
+    out.update(knobs=knobs, default=default, cheapest=cheapest, best=best, scatter=scatter,
                reference=rows[0].get("reference", ""), points=len([r for r in rows if r["status"] == "done"]),
                revision=sorted({r["git_revision"] for r in rows if r["git_revision"]}),
                finished=max((r["finished_at"] for r in rows if r["finished_at"]), default=""))
