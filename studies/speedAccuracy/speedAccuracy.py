@@ -31,6 +31,7 @@ import argparse
 import csv
 import datetime
 import html
+import io
 import json
 import os
 import re
@@ -230,15 +231,12 @@ def write_summary(rows, folder):
     columns = ["scene", "study", "tolerance", "judged", "scatter", "default", "default_wall_s", "default_error", "cheapest",
                "cheapest_wall_s", "cheapest_error", "cheapest_cores", "speedup", "best", "best_wall_s", "best_error",
                "note"]
-    lines = [",".join(columns)]
+    table = io.StringIO()
+    writer = csv.DictWriter(table, columns, lineterminator="\n")
+    writer.writeheader()
     for r in rows:
-        cells = []
-        for c in columns:
-            v = r.get(c, "")
-            v = "%.4g" % v if isinstance(v, float) else str(v)
-            cells.append(f'"{v}"' if "," in v else v)
-        lines.append(",".join(cells))
-    iceCases.write_atomically(os.path.join(folder, "summary.csv"), "\n".join(lines) + "\n")
+        writer.writerow({c: "%.4g" % r[c] if isinstance(r.get(c), float) else r.get(c, "") for c in columns})
+    iceCases.write_atomically(os.path.join(folder, "summary.csv"), table.getvalue())
     md = ["| scene | tolerance (judged) | seed scatter (1 sd) | case default | its wall, worst error | "
           "cheapest within tolerance | its wall, worst error, cores | default / cheapest |",
           "|---|---|---|---|---|---|---|---|"]
