@@ -266,8 +266,12 @@ class Runner:
     def summary_file(self, p):
         if self.study.summary_by:   # the path that the point's value of a knob names
             by, table = self.study.summary_by
-            return os.path.join(self.case(p), table[p.values[by]])
-        return os.path.join(self.case(p), self.study.summary)
+            if by in p.values:
+                return os.path.join(self.case(p), table[p.values[by]])
+            # the scatter knob: a scatter point's seed, the case's own seed on every other point
+            return os.path.join(self.case(p), table[p.seed if p.seed is not None else self.study.scatter.case_value])
+        path = re.sub(r"\$\{(\w+)\}", lambda m: p.values[m.group(1)], self.study.summary)   # a templated path
+        return os.path.join(self.case(p), path)
 
     def finished(self, p):
         """Whether the point's case holds a finished summary (not one marked "complete": false)."""
@@ -482,7 +486,9 @@ class Runner:
         its finest value among the points of this run, the other knobs as p's."""
         values = dict(p.values)
         for k in self.study.knobs:
-            if k.finer:
+            if isinstance(k.finer, list):   # words from the coarsest to the finest
+                values[k.name] = max({q.values[k.name] for q in self.points}, key=k.finer.index)
+            elif k.finer:
                 run_values = sorted({q.values[k.name] for q in self.points}, key=float)
                 values[k.name] = run_values[-1] if k.finer == "larger" else run_values[0]
         return next(q for q in self.points if q.values == values and q.seed is None)

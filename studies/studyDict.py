@@ -206,7 +206,7 @@ class Knob:
         self.values = []        # texts, `default` resolved
         self.quick = None
         self.case_value = None  # the case's own value (text), or None
-        self.finer = None       # 'larger' | 'smaller' | None
+        self.finer = None       # 'larger' | 'smaller' | [values, coarse to fine] | None
         self.template = None    # the entry's value made from the knobs' values ("${name}"), or None
         self.with_entries = {}  # value -> [(file, dotted, value, create)] set beside that value
 
@@ -291,8 +291,8 @@ def _ladder(d, key):
 
 def _read_knob(d, name, s, path):
     """One knob of `knobs` (or the knob of `scatter`): where it goes and its values."""
-    d.check_keys({"entry", "option", "caseEntry", "values", "ladder", "quick", "finer", "create", "template",
-                  "with"})
+    d.check_keys({"entry", "option", "caseEntry", "caseValue", "values", "ladder", "quick", "finer", "create",
+                  "template", "with"})
     knob = Knob(name)
     if d.found("entry") == d.found("option"):
         raise StudyDictError(path, d.line, d.path, "needs one of 'entry file:dotted.path;' or 'option -name;'")
@@ -315,6 +315,11 @@ def _read_knob(d, name, s, path):
             raise d.error("template", "only for an 'entry' knob")
     if d.found("template"):
         knob.template = d.word("template")
+    if d.found("caseValue"):   # an option's value where the Allrun is not given it (-resolution: default)
+        if not knob.option or d.found("caseEntry"):
+            raise d.error("caseValue", "only for an 'option' knob without 'caseEntry' (an entry's own value "
+                                       "is read from the case)")
+        knob.case_value = d.word("caseValue")
     if d.found("caseEntry"):
         file, dotted = _split_entry(d, "caseEntry", d.word("caseEntry"))
         knob.case_value = _case_value(s.case, file, dotted)
@@ -346,11 +351,17 @@ def _read_knob(d, name, s, path):
         extra = [q for q in knob.quick if q not in knob.values]
         if extra:
             raise d.error("quick", f"{', '.join(extra)} not among the values")
-    if d.found("finer"):
+    if d.found("finer") and d.entries["finer"].kind == "list":   # words in order: (quick default)
+        knob.finer = d.items("finer")
+        if sorted(knob.finer) != sorted(knob.values):
+            raise d.error("finer", f"needs the values ({', '.join(knob.values)}) each once, from the coarsest to "
+                                   f"the finest, got ({' '.join(knob.finer)})")
+    elif d.found("finer"):
         knob.finer = d.word("finer", allowed=("larger", "smaller"))
         bad = [v for v in knob.values if _number(v) is None]
         if bad:
-            raise d.error("finer", f"needs numeric values, got {', '.join(bad)}")
+            raise d.error("finer", f"needs numeric values (or the values in order: finer ( coarse ... fine );), "
+                                   f"got {', '.join(bad)}")
     if d.found("with"):
         wd = d.subdict("with")
         for value in wd.keys():
@@ -459,13 +470,26 @@ def read_study(path):
     s.scatter, s.scatter_at = (None, None) if not top.found("scatter") else _read_scatter(top.subdict("scatter"), s, path)
     if s.summary_by:
         by, table = s.summary_by
-        knob = next((k for k in s.knobs if k.name == by), None)
+        knob = next((k for k in s.knobs + ([s.scatter] if s.scatter else []) if k.name == by), None)
         if knob is None:
             raise st.subdict("summary").error("by", f"'{by}' names no knob ({', '.join(k.name for k in s.knobs)})")
-        missing = [v for v in knob.values if v not in table]
+        needed = knob.values
+        if knob is s.scatter:   # the other seeds, and the case's own for every other point
+            if knob.case_value is None:
+                raise st.subdict("summary").error("by", f"the scatter knob '{by}' needs the case's own value "
+                                                        "(name it with 'caseEntry file:dotted;')")
+            needed = [knob.case_value] + knob.values
+        missing = [v for v in needed if v not in table]
         if missing:
             raise StudyDictError(path, st.subdict("summary").line, "study.summary",
                                  f"no path for {by} {', '.join(missing)}")
+    elif "$" in s.summary:   # "runs/${resolution}-speed${speed}/...": the point's values of the knobs
+        names = {k.name for k in s.knobs}
+        for ref in re.findall(r"\$\{([^}]*)\}", s.summary):
+            if ref not in names:
+                raise st.error("summary", f"'${{{ref}}}' names no knob ({', '.join(sorted(names))})")
+        if "$" in re.sub(r"\$\{[^}]*\}", "", s.summary):
+            raise st.error("summary", "a '$' only as ${knob}")
     s.fixed = _fixed_entries(top.subdict("set"), s) if top.found("set") else []
     # the knobs' `with` blocks were read before `set`: their includes are in s.includes too
 

@@ -116,7 +116,8 @@ def plot(runner, rows, path):
     elif study.reference_type == "none":
         ref = "no reference"
     else:
-        ref = "reference: the finest point (" + ", ".join(f"{k.name} {k.finer}" for k in knobs if k.finer) + ")"
+        ref = "reference: the finest point (" + ", ".join(
+            f"{k.name} {k.finer[-1] if isinstance(k.finer, list) else k.finer}" for k in knobs if k.finer) + ")"
     fig.suptitle(f"{study.case_name}: {study.description or 'study'} ({ref})", fontsize=9)
     fig.tight_layout()
     tmp = path + ".tmp.png"

@@ -70,8 +70,10 @@ SCRIPTS = {
          (["-runs", "1,17"], "-runs"), (["-runs", "a"], "-runs"), (["-runs", "1,,2"], "-runs"),
          (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke"),
          (["-speed", "0"], "-speed"), (["-speed", "0.1m/s"], "-speed"), (["-speed", "0.1", "-publish"], "-speed"),
-         (["-speed", "0.1", "-water", "cfd"], "-speed")],
+         (["-speed", "0.1", "-water", "cfd"], "-speed"), (["-resolution", "fine"], "-resolution"),
+         (["-resolution"], "-resolution")],
         [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-runs", "6", "-speed", "0.05"],
+         ["-resolution", "default", "-runs", "6", "-speed", "0.025", "-jobs", "1"],
          ["-quick", "-publish"],
          ["-water", "cfd", "-runs", "6,14", "-publish"]]),
     "cases/ridgeDesignMap/Allrun": (
@@ -84,8 +86,11 @@ SCRIPTS = {
         [[], ["-smoke"], ["-shape", "empirical", "-resume", "-np", "1"], ["-publish"]]),
     "cases/rubblePunch/Allrun": (
         [(["-keels", "x"], "-keels"), (["-keels", ""], "-keels"), (["-water", "x"], "-water"),
-         (["-water", "cfd", "-resume"], "-resume")],
+         (["-water", "cfd", "-resume"], "-resume"), (["-keelSeed", "1"], "-keelSeed"),
+         (["-keelSeed", "2x"], "-keelSeed"), (["-keelSeed"], "-keelSeed"), (["-smoke", "-keelSeed", "2"], "-keelSeed"),
+         (["-keelSeed", "3", "-publish"], "-keelSeed")],
         [[], ["-smoke"], ["-keels", "cuboid empirical", "-water", "cfd", "-rateStudy", "-np", "2"],
+         ["-keels", "cuboid", "-keelSeed", "2", "-np", "1"],
          ["-keels", "empirical", "-resume"], ["-keels", "cuboid", "-water", "cfd", "-publish"]]),
     "cases/settlingBed/Allrun": (
         [(["-level", "x"], "-level"), (["-endTime", "0"], "-endTime"), (["-endTime", "abc"], "-endTime")],

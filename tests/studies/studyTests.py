@@ -271,6 +271,10 @@ def test_bad_dict():
          "1", "figures", "missing entry"),
         ("ladder count", text.replace("values (0.4 0.2);", "ladder { from 0.4; factor 0.5; count 0; }"), "4",
          "knobs.platenSpeed.ladder.count", "needs a number > 0"),
+        ("finer order missing a value", text.replace("values (0.4 0.2);", "values (0.4 0.2); finer (0.4);"), "4",
+         "knobs.platenSpeed.finer", "needs the values (0.4, 0.2) each once"),
+        ("caseValue of an entry", text.replace("values (0.4 0.2);", "values (0.4 0.2); caseValue 0.4;"), "4",
+         "knobs.platenSpeed.caseValue", "only for an 'option' knob"),
     ]
     for what, bad_text, line, entry, words in cases:
         folder = os.path.join(work, "bad_" + what.replace(" ", "_").replace("'", "").replace(";", ""))
@@ -443,6 +447,18 @@ reference { type none; }
     check(r.returncode == 1 and "no saved stage cases/freezeBondTension/keels/none" in r.stderr
           and not os.path.isdir(os.path.join(stage, "runs", "np-1")),
           f"a saved stage that is not built refused before any point runs: {r.stderr.strip()[:160]}")
+    template = os.path.join(work, "allrunTemplate")
+    os.makedirs(template)
+    with open(os.path.join(template, "studyDict"), "w") as f:
+        f.write("""study { case freezeBondTension; allrun (-smoke); summary "runs/${speed}/summary.json"; }
+knobs { np { option -np; values (1); } }
+figures { first runs[0].simulated_kPa; }
+reference { type none; }
+""")
+    r = run(template)
+    check(r.returncode == 1 and "study.summary" in r.stderr and "'${speed}' names no knob (np)" in r.stderr
+          and not os.path.isdir(os.path.join(template, "runs")),
+          f"a templated summary path naming no knob refused: {r.stderr.strip()[:160]}")
     bad = os.path.join(work, "allrunBad")
     os.makedirs(bad)
     with open(os.path.join(bad, "studyDict"), "w") as f:
