@@ -449,6 +449,15 @@ void RidgeScene::assemble()
                 "or -stage compact)");
         }
         requireInsideBox(keel);
+        // The keel's overlaps are forces only at the modulus it came to rest
+        // with: pressed or stiffened from another, it would jump apart or sag.
+        if (std::isfinite(keel.contactYoungsModulus) && keel.contactYoungsModulus != settings_.assemblyYoungsModulus)
+        {
+            throw InputError(context_.path("constant/ridgeProperties"), "assembly.youngsModulus",
+                formatNumber(settings_.assemblyYoungsModulus) + " Pa, but the keel " + settings_.keelFile
+                + " came to rest with contacts at " + formatNumber(keel.contactYoungsModulus) + " Pa (its rubble case's "
+                "settling or compaction youngsModulus): set the same modulus here");
+        }
     }
     const RidgeLayout layout = settings_.hasKeel
         ? assembleRidge(keel.particles, settings_.layer, settings_.trimDepth)

@@ -141,8 +141,8 @@ RubbleSettings RubbleSettings::readCase(const std::string& caseDir, const std::s
     if (s.layers < 1) b.fail("layers", "must be at least 1");
     s.rubbleThickness = b.getPositiveScalarOrDefault("rubbleThickness", s.rubbleThickness);
     const Dictionary& c = d.subDict("compaction");
-    c.checkKeys({"method", "targetPorosity", "speed", "maxPressure", "frictionCoefficient", "holdTime", "holdPressure",
-                  "releaseTime"});
+    c.checkKeys({"method", "targetPorosity", "speed", "maxPressure", "frictionCoefficient", "youngsModulus", "holdTime",
+                  "holdPressure", "releaseTime"});
     s.compaction = compactionMethodNames.get(c, "method");
     if (s.compaction == CompactionMethod::plates)
     {
@@ -154,6 +154,10 @@ RubbleSettings RubbleSettings::readCase(const std::string& caseDir, const std::s
         {
             s.compactionFriction = c.getScalar("frictionCoefficient");
             if (!(s.compactionFriction >= 0.0)) c.fail("frictionCoefficient", "must not be negative");
+        }
+        if (c.found("youngsModulus"))
+        {
+            s.compactionYoungsModulus = c.getPositiveScalarOrDefault("youngsModulus", 1.0);
         }
         s.holdTime = c.getScalarOrDefault("holdTime", s.holdTime);
         if (!(s.holdTime >= 0.0)) c.fail("holdTime", "must not be negative");
@@ -274,6 +278,15 @@ RubbleScene::RubbleScene(MPI_Comm comm, const RubbleSettings& settings, const Ex
     {
         settlingIce_.material.frictionCoefficient = settings_.settlingFriction;
     }
+    // Contacts as soft as the settling's hold the compaction's pressure as
+    // overlaps (millimetres between 55 mm spheres) that spring back when the
+    // lid backs off; near the ice's stiffness the blocks must rearrange instead.
+    compactionIce_ = settlingIce_;
+    if (settings_.compactionYoungsModulus > 0.0)
+    {
+        compactionIce_ = ice_.softenedForAssembly(settings_.compactionYoungsModulus, settings_.settlingDampingAlpha);
+        compactionIce_.material.frictionCoefficient = settlingIce_.material.frictionCoefficient;
+    }
 }
 
 
@@ -314,13 +327,15 @@ void RubbleScene::buildBlocks()
 }
 
 
-void RubbleScene::startLiggghts(const SavedRubble* from, bool settling, const std::string& restart, bool withPlates)
+void RubbleScene::startLiggghts(const SavedRubble* from, const IceProperties& stageIce, const std::string& restart,
+                                bool withPlates)
 {
-    const IceProperties& ice = settling ? settlingIce_ : ice_;
+    const IceProperties& ice = stageIce;
     const double r = 0.5*settings_.particleDiameter;
     const double mass = ice.material.density*4.0/3.0*M_PI*r*r*r;
-    settlingContact_ = ContactParameters::of(settlingIce_, settings_.particleDiameter, mass);
-    const ContactParameters contact = ContactParameters::of(ice, settings_.particleDiameter, mass);
+    stageContact_ = ContactParameters::of(ice, settings_.particleDiameter, mass);
+    stageYoungsModulus_ = ice.material.youngsModulus;
+    const ContactParameters& contact = stageContact_;
 
     std::vector<ParticleSpec> particles = rubble_.particles;
     std::vector<int> types(particles.size(), mobileType);
@@ -577,6 +592,7 @@ SavedRubble RubbleScene::gatherState(double time) const
     s.bonds = gatherBondStates(context_.comm(), *bonds_);
     s.time = time;
     s.waterLevel = water_.hydrostatic.surfaceLevel;
+    s.contactYoungsModulus = stageYoungsModulus_;
     s.description = "rubble of " + std::to_string(blockOfTag_.size()) + " particles, rubbleDEM";
     if (context_.rank() == 0)
     {
@@ -655,7 +671,7 @@ void RubbleScene::settle()
         }
         t = saved.time;
         context_.log("Resuming the settling from " + checkpoint + " at t = " + formatNumber(t) + " s");
-        startLiggghts(&saved, true, restart);
+        startLiggghts(&saved, settlingIce_, restart);
         steps_ = lmp_->step();
         LAMMPS_NS::Update& update = *lmp_->engine().update;
         update.atime = update.ntimestep * dt_;
@@ -663,7 +679,7 @@ void RubbleScene::settle()
     }
     else
     {
-        startLiggghts(nullptr, true);
+        startLiggghts(nullptr, settlingIce_);
     }
     const long n = static_cast<long>(blockOfTag_.size());
     std::ostringstream head;
@@ -792,6 +808,52 @@ void RubbleScene::writeSettlingSummary() const
 }
 
 
+OverlapStatistics RubbleScene::blockOverlaps() const
+{
+    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
+    std::vector<ParticleSpec> particles(positions.size());
+    for (std::size_t k = 0; k < particles.size(); ++k)
+    {
+        particles[k].position = positions[k];
+        particles[k].radius = 0.5*settings_.particleDiameter;
+        particles[k].block = blockOfTag_[k];
+    }
+    return overlapStatistics(particles, positions);
+}
+
+
+void RubbleScene::writeCompactionSummary() const
+{
+    if (context_.rank() != 0) return;
+    const auto overlaps = [](const OverlapStatistics& o)
+    {
+        return Json{{"touching_block_pairs", o.touchingPairs}, {"mean_overlap_m", o.meanOverlap},
+                    {"max_overlap_m", o.maxOverlap}};
+    };
+    Json j;
+    j["youngs_modulus_Pa"] = compacted_.youngsModulus;
+    j["target_porosity"] = settings_.targetPorosity;
+    j["porosity_when_plates_touched"] = compacted_.startPorosity;
+    j["porosity_when_closed"] = compacted_.closedPorosity > 0.0 ? Json(compacted_.closedPorosity) : Json();
+    j["lid_pressure_when_closed_Pa"] = compacted_.closedLidPressure;
+    j["overlaps_when_closed"] = overlaps(compacted_.closedOverlaps);
+    j["hold_pressure_Pa"] = settings_.holdPressure;
+    j["porosity_after_hold"] = compacted_.porosity;
+    j["lid_pressure_after_hold_Pa"] = compacted_.lidPressure;
+    j["floor_pressure_after_hold_Pa"] = compacted_.floorPressure;
+    j["overlaps_after_hold"] = overlaps(compacted_.heldOverlaps);
+    j["plate_bottom_m"] = compacted_.plateBottom;
+    j["plate_top_m"] = compacted_.plateTop;
+    j["compaction_and_hold_s"] = compacted_.time;
+    j["steps"] = long(std::lround(compacted_.time/dt_));
+    j["dt"] = dt_;
+    j["wall_s"] = compacted_.wall;
+    j["inputs_fingerprint"] = compactionInputs_.fingerprint();
+    std::filesystem::create_directories(context_.path("postProcessing"));
+    writeFileAtomically(context_.path("postProcessing/compaction.json"), jsonText(j));
+}
+
+
 void RubbleScene::compact()
 {
     const auto start = std::chrono::steady_clock::now();
@@ -863,24 +925,41 @@ void RubbleScene::compact()
     setFriction(settings_.compactionFriction >= 0.0 ? settings_.compactionFriction
                                                     : settlingIce_.material.frictionCoefficient);
     bool first = true;
+    // The compaction curve, written whole at the end or where the rubble jams.
+    CsvWriter curve({"t", "gap", "porosity", "lid_Pa", "floor_Pa", "kinetic_energy_per_particle_J"});
+    const std::string curvePath = context_.path("postProcessing/compaction.csv");
+    const auto writeCurve = [&]()
+    {
+        if (context_.rank() != 0) return;
+        std::filesystem::create_directories(context_.path("postProcessing"));
+        curve.write(curvePath);
+    };
     while (t < holdUntil)
     {
         const long chunk = holdUntil == HUGE_VAL ? closingChunk : holdingChunk;
         const double ke = advance(chunk, first, t, "compaction (t counted from its start)");
         loads = plates_->loads();
         const double porosity = porosityInGap(rubble_.iceVolume, area, plates_->gap());
+        curve.addRow({t, plates_->gap(), porosity, loads.lid/area, loads.floor/area, ke});
         if (loads.lid/area > settings_.maxCompactionPressure)
         {
+            writeCurve();
+            const OverlapStatistics jammed = blockOverlaps();
             throw RunError("compaction stopped at porosity " + formatNumber(porosity) + " (plates "
                 + formatNumber(plates_->gap()) + " m apart) with " + formatNumber(loads.lid/area) + " Pa on the lid, above "
                 + file + " compaction.maxPressure " + formatNumber(settings_.maxCompactionPressure)
                 + " Pa: the target porosity " + formatNumber(settings_.targetPorosity) + " is out of reach for these "
-                "blocks (they jam); aim higher, or allow more pressure");
+                "blocks (they jam; " + std::to_string(jammed.touchingPairs) + " touching block pairs overlap "
+                + formatNumber(jammed.meanOverlap*1e6) + " um on average at contacts of E = "
+                + formatNumber(compactionIce_.material.youngsModulus) + " Pa); aim higher, or allow more pressure "
+                "(the curve: postProcessing/compaction.csv)");
         }
         if (plates_->closed() && holdUntil == HUGE_VAL)
         {
             holdUntil = t + settings_.holdTime;
             compacted_.closedPorosity = porosity;
+            compacted_.closedLidPressure = loads.lid/area;
+            compacted_.closedOverlaps = blockOverlaps();
             setFriction(settlingIce_.material.frictionCoefficient);
             first = true;   // the pair style reads the friction at the next set-up
         }
@@ -901,6 +980,7 @@ void RubbleScene::compact()
             nextLog = t + 0.5;
         }
     }
+    writeCurve();
     compacted_.plateBottom = plates_->bottom();
     compacted_.plateTop = plates_->top();
     compacted_.porosity = porosityInGap(rubble_.iceVolume, area, plates_->gap());
@@ -908,13 +988,20 @@ void RubbleScene::compact()
     compacted_.floorPressure = loads.floor/area;
     compacted_.time = t;
     compacted_.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    compacted_.heldOverlaps = blockOverlaps();
+    compacted_.youngsModulus = compactionIce_.material.youngsModulus;
     std::ostringstream msg;
     msg << "Compacted in " << t << " s (" << formatDuration(compacted_.wall) << "): porosity " << compacted_.startPorosity
         << " -> " << compacted_.closedPorosity << ", " << compacted_.porosity << " after the lid backed off to "
         << settings_.holdPressure << " Pa; plates at z = " << compacted_.plateBottom << " and "
         << compacted_.plateTop << " m; lid " << compacted_.lidPressure << " Pa, floor " << compacted_.floorPressure
-        << " Pa at the end of the hold";
+        << " Pa at the end of the hold; contacts at E = " << compacted_.youngsModulus << " Pa: "
+        << compacted_.closedOverlaps.touchingPairs << " touching block pairs, mean overlap "
+        << compacted_.closedOverlaps.meanOverlap*1e6 << " um when closed (lid " << compacted_.closedLidPressure
+        << " Pa), " << compacted_.heldOverlaps.touchingPairs << " pairs and " << compacted_.heldOverlaps.meanOverlap*1e6
+        << " um after the hold";
     context_.log(msg.str());
+    writeCompactionSummary();
     SavedRubble state = gatherState(t);
     state.provenance = compactionInputs_.text();
     state.kind = SavedRubble::compactedRubble;
@@ -952,7 +1039,7 @@ void RubbleScene::release()
         << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
         << "): layer " << released_.bottom << " to " << released_.top << " m, thickness " << released_.thickness
         << " m, porosity " << released_.porosity << ", " << 100*released_.volumeAboveWater
-        << " % of the ice above water (bonds at the settling's softened stiffness, unbreakable: the geometry "
+        << " % of the ice above water (bonds at the compaction's softened stiffness, unbreakable: the geometry "
         << "the plates leave, not the bonds' strength)";
     context_.log(msg.str());
 }
@@ -983,8 +1070,8 @@ void RubbleScene::freezeBond()
             ice_.family(BondFamily::freeze).radiusMultiplier*0.5*settings_.particleDiameter;
         heatBalance->setFromBlocks(volume, surface, bondRadius);
     }
-    // The contact forces are those of the contact model the rubble settled with.
-    freezeBonds_ = freezeBondsAtContacts(now, ice_, freezeBondProperties_, settlingContact_.normalStiffness);
+    // The contact forces are those of the contact model the rubble came to rest with.
+    freezeBonds_ = freezeBondsAtContacts(now, ice_, freezeBondProperties_, stageContact_.normalStiffness);
     freezeStats_ = freezeBondingStatistics(freezeBonds_, now);
     bonds_->addBonds(freezeBondStates(freezeBonds_, now, ice_));
 
@@ -1108,6 +1195,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
     if (settings_.compaction == CompactionMethod::plates)
     {
         j["compaction"] = {{"method", "plates"}, {"target_porosity", settings_.targetPorosity},
+            {"youngs_modulus_Pa", compactionIce_.material.youngsModulus},
             {"porosity_when_plates_touched", compacted_.startPorosity > 0.0 ? Json(compacted_.startPorosity) : Json()},
             {"porosity_when_closed", compacted_.closedPorosity > 0.0 ? Json(compacted_.closedPorosity) : Json()},
             {"hold_pressure_Pa", settings_.holdPressure},
@@ -1157,7 +1245,7 @@ SavedRubble RubbleScene::readStage(const std::string& file, const char* kind, co
 
 void RubbleScene::startFromCompacted(const SavedRubble& compacted)
 {
-    startLiggghts(&compacted, true, "", true);
+    startLiggghts(&compacted, compactionIce_, "", true);
     plates_->place(compacted.plateBottom, compacted.plateTop);
     lmp_->command("run 0");     // the plates' loads on the saved state
     const PlateLoads loads = plates_->loads();
@@ -1211,7 +1299,7 @@ void RubbleScene::run()
         }
         else
         {
-            startLiggghts(&settled, true, "", true);
+            startLiggghts(&settled, compactionIce_, "", true);
             compact();
             MPI_Barrier(context_.comm());   // rank 0 wrote it
             compacted = SavedRubble::read(context_.path("DEM/compacted.h5"), SavedRubble::compactedRubble);
@@ -1224,6 +1312,9 @@ void RubbleScene::run()
             {
                 compacted_.startPorosity = measured.startPorosity;
                 compacted_.closedPorosity = measured.closedPorosity;
+                compacted_.closedLidPressure = measured.closedLidPressure;
+                compacted_.closedOverlaps = measured.closedOverlaps;
+                compacted_.heldOverlaps = measured.heldOverlaps;
                 compacted_.time = measured.time;
                 compacted_.wall = measured.wall;
             }
@@ -1231,7 +1322,7 @@ void RubbleScene::run()
     }
     else if (bonding && settings_.stage == "bond")
     {
-        startLiggghts(&settled, true);
+        startLiggghts(&settled, settlingIce_);
         layer_.kineticEnergyPerParticle = totalKineticEnergy(*lmp_)/double(blockOfTag_.size());
     }
     if (bonding)

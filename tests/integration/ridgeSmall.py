@@ -12,7 +12,8 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
             the layer-keel freeze-bonds of ridge.h5, and against n_bonds x bond area x c_f sigma_t
             / (L B)
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
-  badInput  (d) missing entry, unknown test type, negative thickness, missing keel file: a
+  badInput  (d) missing entry, unknown test type, negative thickness, missing keel file, a keel
+            that came to rest at another contact modulus than the assembly's: a
             message naming the entry and a non-zero exit; a particle faster than the
             controlDict's maxParticleSpeed stops the run, naming particle, place and time
   resumeInertia  the same with the inertia scaled by 10 (test.inertiaScaling): settled with the
@@ -486,6 +487,9 @@ def bad_input(work, bin_dir):
            ["settling.checkpoint.h5", "settling checkpoint", "a keel must be a settled or a compacted rubble"])
     expect("keelOfAnotherBox", lambda p: iceCases.set_entry(p, "box.length", 1.0),
            ["ridgeProperties", "'box'", "another box"])
+    # The keel settled with contacts at 2 MPa: its overlaps are forces only at that modulus.
+    expect("keelOfAnotherContactModulus", lambda p: iceCases.set_entry(p, "assembly.youngsModulus", 2e7),
+           ["ridgeProperties", "assembly.youngsModulus", "came to rest with contacts at 2000000 Pa"])
 
     # Inertia scaling (issue 17): range-checked, and refused where nothing is integrated
     # (the keel-bond tests hold the layer and sum its forces) and in the rubble's settling.

@@ -18,11 +18,18 @@
    compacted rubble is not bonded after the plates' speed changed (naming
    compacted.h5 and -stage compact), nor after the target porosity changed
    (the ice rained in: settled.h5 and -stage settle); with the inputs put back
-   it compacts and bonds as before.
+   it compacts and bonds as before;
+4. compacted with contacts ten times stiffer (compaction.youngsModulus), the
+   same settled heap closes at the target, the stage records the contacts'
+   modulus (compacted.h5 and compaction.json), and the lid needs several times
+   the soft contacts' pressure at the same gap (postProcessing/compaction.json:
+   overlaps between blocks when closed and after the hold).
 
 usage: rubbleSmall.py CASE WORKDIR APP"""
+import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -173,8 +180,31 @@ iceCases.set_entry(props, "compaction.speed", speed)
 iceCases.set_entry(props, "compaction.targetPorosity", target + 0.05)   # another amount of ice rained in
 refused(["-stage", "bond"], ["settled.h5", "porosity of a blocks.rubbleThickness layer", "-stage settle"])
 iceCases.set_entry(props, "compaction.targetPorosity", target)
+soft = json.load(open(os.path.join(beam, "postProcessing", "compaction.json")))
 iceCases.run_app(app, beam, 1, ["-stage", "compact"], "log.compact_again")
 iceCases.run_app(app, beam, 1, ["-stage", "bond"], "log.bond_again")
 check(iceCases.summary(beam)["freeze_bonds"] == one["freeze_bonds"],
       "the box put back, the settled rubble compacts and bonds again as before")
+
+# 4. The same settled heap compacted with contacts ten times stiffer.
+stiff = iceCases.copy_case(beam, os.path.join(work, "beamStiff"))
+shutil.copy(os.path.join(beam, "DEM", "settled.h5"), os.path.join(stiff, "DEM", "settled.h5"))
+modulus = 10 * float(iceCases.get_entry(props, "settling.youngsModulus"))
+iceCases.add_entry(os.path.join(stiff, "constant", "rubbleProperties"), "compaction.youngsModulus", modulus)
+iceCases.set_entry(os.path.join(stiff, "constant", "rubbleProperties"), "compaction.maxPressure", 1e6)
+iceCases.run_app(app, stiff, 1, ["-stage", "compact"], "log.compact")
+hard = json.load(open(os.path.join(stiff, "postProcessing", "compaction.json")))
+with h5py.File(os.path.join(stiff, "DEM", "compacted.h5"), "r") as f:
+    saved_modulus = f.attrs.get("contactYoungsModulus")
+check(hard["youngs_modulus_Pa"] == modulus == saved_modulus and soft["youngs_modulus_Pa"] == modulus / 10,
+      f"the compaction's contact modulus is recorded: {saved_modulus} Pa in compacted.h5, "
+      f"{hard['youngs_modulus_Pa']} in compaction.json (soft {soft['youngs_modulus_Pa']})")
+check(abs(hard["porosity_when_closed"] - target) < 1e-9 and abs(soft["porosity_when_closed"] - target) < 1e-9,
+      f"stiff contacts close at the target too ({hard['porosity_when_closed']})")
+ratio = hard["lid_pressure_when_closed_Pa"] / soft["lid_pressure_when_closed_Pa"]
+check(ratio > 2,
+      f"at the same gap the stiff contacts need {ratio:.1f} times the lid pressure "
+      f"({hard['lid_pressure_when_closed_Pa']:.0f} against {soft['lid_pressure_when_closed_Pa']:.0f} Pa; mean overlap "
+      f"{1e3 * hard['overlaps_when_closed']['mean_overlap_m']:.2f} against "
+      f"{1e3 * soft['overlaps_when_closed']['mean_overlap_m']:.2f} mm)")
 sys.exit(1 if failures else 0)

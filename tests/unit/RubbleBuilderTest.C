@@ -152,6 +152,21 @@ TEST(SavedRubble, KindAndProvenanceAreKeptAndAnotherKindIsRefused)
     }
 }
 
+TEST(SavedRubble, ContactModulusIsKeptAndUnrecordedIsNaN)
+{
+    SavedRubble s;
+    SavedParticle p;
+    p.radius = 0.01;
+    p.density = 917.0;
+    s.particles = {p};
+    const std::string path = (std::filesystem::temp_directory_path() / "savedRubbleModulusTest.h5").string();
+    s.write(path);
+    EXPECT_TRUE(std::isnan(SavedRubble::read(path).contactYoungsModulus));
+    s.contactYoungsModulus = 1.95e8;
+    s.write(path);
+    EXPECT_EQ(SavedRubble::read(path).contactYoungsModulus, 1.95e8);
+}
+
 TEST(SavedRubble, TruncatedAndForeignFilesAreInputErrorsNamingTheFile)
 {
     const std::string dir = std::filesystem::temp_directory_path().string();

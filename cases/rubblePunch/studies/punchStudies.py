@@ -26,6 +26,7 @@ usage: studies/punchStudies.py {cause,sweep} [--work DIR] [--jobs N] [--publish]
        (default WORK runs/punchStudies; each about 6 min on 2 cores)"""
 import argparse
 import concurrent.futures
+import json
 import os
 import re
 import sys
@@ -67,43 +68,84 @@ def settled_keel(work):
     return os.path.join(keel, "DEM", "settled.h5")
 
 
-def compacted_keel(work, porosity, held=False):
+FINE_BLOCKS = {"blocks.particleDiameter": 0.037, "blocks.layers": 3}     # the same 0.1 m blocks, smoother faces
+
+
+def keel_folder(work, porosity, held=False, modulus=None, box=BOX, max_pressure=None, fine=False):
+    return os.path.join(work, "keels", f"compacted{porosity:g}" + ("held" if held else "")
+                        + (f"_E{modulus:g}" if modulus else "") + (f"_w{box[1]:g}" if box != BOX else "")
+                        + (f"_p{max_pressure:g}" if max_pressure else "") + ("_fine" if fine else ""))
+
+
+def block_tilts(stage):
+    """Each block's tilt (degrees): the angle between its thinnest axis (of its spheres' centres) and z."""
+    import h5py
+    import numpy as np
+    with h5py.File(stage, "r") as f:
+        p = f["particles"]
+        x = np.stack([p["x"][:], p["y"][:], p["z"][:]], axis=1)
+        block = p["block"][:].astype(int)
+    tilts = []
+    for b in np.unique(block):
+        y = x[block == b] - x[block == b].mean(axis=0)
+        thinnest = np.linalg.eigh(y.T @ y)[1][:, 0]
+        tilts.append(np.degrees(np.arccos(min(1.0, abs(thinnest[2])))))
+    return np.array(tilts)
+
+
+def compacted_keel(work, porosity, held=False, modulus=None, box=BOX, max_pressure=None, fine=False):
     """A keel of the same ice as the settled heap (a rubbleThickness layer at porosity 0.40), rained
     in and compacted between plates to `porosity`: (stage file, its summary) or (None, the reason).
     held: the lid does not back off to the case's holdPressure but holds the target gap, so that
     the freeze-bonds are made at the target porosity while the compaction's pressure still acts
-    (the reference method), not after the rubble sprang back."""
+    (the reference method), not after the rubble sprang back.
+    modulus: the contacts' and blocks' Young's modulus from compaction on (None: the settling's).
+    box: (length, width, thickness of the ice at porosity 0.40); max_pressure: the lid's (None: the case's)."""
     # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
-    thickness = BOX[2] * (1 - ICE_POROSITY) / (1 - porosity)
+    thickness = box[2] * (1 - ICE_POROSITY) / (1 - porosity)
     entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity}
+    if max_pressure:
+        entries["compaction.maxPressure"] = f"{max_pressure:g}"
+    if fine:
+        entries.update(FINE_BLOCKS)
     if held:
         props = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
         entries["compaction.holdPressure"] = 0.99 * float(iceCases.get_entry(props, "compaction.maxPressure"))
-    keel = iceCases.prepared_run(
-        os.path.join(work, "keels", f"compacted{porosity:g}" + ("held" if held else "")),
-        lambda folder: iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), folder, BOX[0], BOX[1],
-                                                  thickness, 6, 15, entries))
+
+    def prepare(folder):
+        iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), folder, box[0], box[1], thickness, 6, 15,
+                                   entries)
+        if modulus:
+            iceCases.add_entry(os.path.join(folder, "constant", "rubbleProperties"), "compaction.youngsModulus",
+                               f"{modulus:g}")
+
+    keel = iceCases.prepared_run(keel_folder(work, porosity, held, modulus, box, max_pressure, fine), prepare)
     stage = os.path.join(keel, "DEM", "compacted.h5")
     if not os.path.exists(stage):
         try:
-            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
+            if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
+                iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
             iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
         except RuntimeError as error:
             return None, iceCases.fatal_message(error)
     line = next(l for l in open(os.path.join(keel, "log.compact")) if l.startswith("Compacted"))
     found = re.search(r"porosity ([\d.]+) -> ([\d.]+), ([\d.]+) after the lid backed off", line)
-    return stage, {"settled": float(found.group(1)), "closed": float(found.group(2)),
-                   "held": float(found.group(3))}
+    info = {"settled": float(found.group(1)), "closed": float(found.group(2)), "held": float(found.group(3))}
+    summary = os.path.join(keel, "postProcessing", "compaction.json")
+    if os.path.exists(summary):
+        info["compaction"] = json.load(open(summary))
+    return stage, info
 
 
-def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped"):
+def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped",
+          keel_modulus=None, box=BOX):
     """A reduced punch in `run`; returns its figures (summary + beamPhase)."""
     def prepare(folder):
         iceCases.copy_case(CASE, folder)
         props = os.path.join(folder, "constant", "ridgeProperties")
         text = open(props).read()
         open(props, "w").write(text.replace(
-            "\nconsolidatedLayer", "\nbox\n{\n    length %g;\n    width %g;\n}\n\nconsolidatedLayer" % BOX[:2], 1))
+            "\nconsolidatedLayer", "\nbox\n{\n    length %g;\n    width %g;\n}\n\nconsolidatedLayer" % box[:2], 1))
         iceCases.set_entry(props, "keel.settledRubble", '"%s"' % stage)
         for entry, value in (("test.settleTime", 0.05), ("ends.fixedLength", 0.1), ("ends.endSupport", support),
                              ("test.speed", speed)):
@@ -121,6 +163,8 @@ def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set
             iceCases.set_entry(bonds, "fixedSetCoeffs.sets.4h.shear", f"{fixed_strengths[1]:g}")
         if bond_set:
             iceCases.set_entry(bonds, "fixedSetCoeffs.set", bond_set)
+        if keel_modulus:    # the assembly starts from the contacts the keel came to rest with
+            iceCases.set_entry(props, "assembly.youngsModulus", f"{keel_modulus:g}")
 
     run = iceCases.prepared_run(run, prepare, upstream=[stage])
     if not iceCases.finished(run):
@@ -189,6 +233,122 @@ def sweep_points(work):
     return points, extra
 
 
+WIDE_BOX = (1.6, 0.94, 0.3)         # the case's width: the reduced box's 0.4 m jams blocks of up to 0.26 m
+CURVE_MODULI = (2e6, 2e7, 1.95e8)   # Pa: the settling's, ten times it, the ice's
+CURVE_TARGET, CURVE_MAX_PRESSURE = 0.30, 100e3
+
+
+def read_compaction_curve(keel):
+    """(porosity, lid pressure) arrays of a keel's postProcessing/compaction.csv, closing phase only."""
+    import numpy as np
+    data = np.genfromtxt(os.path.join(keel, "postProcessing", "compaction.csv"), delimiter=",", names=True)
+    closed = np.argmin(data["gap"]) + 1     # then the hold, the lid backing off
+    return data["porosity"][:closed], data["lid_Pa"][:closed]
+
+
+def compaction_study(work, jobs):
+    """Each modulus's heap closed towards porosity 0.30 until its lid needs CURVE_MAX_PRESSURE: the
+    porosity against the lid's pressure, and the overlaps between blocks it takes; at the ice's
+    modulus also with 37 mm spheres in 3 layers (the same blocks with smoother faces)."""
+    import numpy as np
+    args = [dict(work=work, porosity=CURVE_TARGET, modulus=m, box=WIDE_BOX, max_pressure=CURVE_MAX_PRESSURE)
+            for m in CURVE_MODULI]
+    args.append(dict(args[-1], fine=True))
+    with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
+        outcomes = list(pool.map(lambda kw: compacted_keel(**kw), args))
+    rows = []
+    for kw, (stage, info) in zip(args, outcomes):
+        keel = keel_folder(**kw)
+        porosity, lid = read_compaction_curve(keel)
+        settled_tilts = block_tilts(os.path.join(keel, "DEM", "settled.h5"))
+        row = {"modulus_MPa": kw["modulus"] / 1e6,
+               "particles_mm": 1e3 * (FINE_BLOCKS["blocks.particleDiameter"] if kw.get("fine") else 0.055),
+               "settled": porosity[0], "settled_tilt_median_deg": float(np.median(settled_tilts)),
+               "settled_tilted_over_30_share": float(np.mean(settled_tilts > 30))}
+        for pressure in (1e3, 10e3, 50e3):
+            reached = porosity[lid <= pressure]
+            row[f"porosity_at_{pressure / 1e3:g}kPa"] = reached.min() if len(reached) else None
+        if stage:
+            c = info["compaction"]
+            row.update(reached=c["porosity_when_closed"], lid_kPa=c["lid_pressure_when_closed_Pa"] / 1e3,
+                       mean_overlap_mm=1e3 * c["overlaps_when_closed"]["mean_overlap_m"],
+                       max_overlap_mm=1e3 * c["overlaps_when_closed"]["max_overlap_m"],
+                       after_hold=c["porosity_after_hold"], stopped="")
+            tilts = block_tilts(stage)
+            row.update(compacted_tilt_median_deg=float(np.median(tilts)),
+                       compacted_tilted_over_30_share=float(np.mean(tilts > 30)))
+        else:
+            m = re.search(r"overlap ([\d.e+-]+) um", info)
+            row.update(reached=porosity.min(), lid_kPa=lid.max() / 1e3,
+                       mean_overlap_mm=float(m.group(1)) / 1e3 if m else None, max_overlap_mm=None,
+                       after_hold=None, stopped="jammed", compacted_tilt_median_deg=None,
+                       compacted_tilted_over_30_share=None)
+        rows.append((row, keel))
+        print(row, flush=True)
+    return rows
+
+
+def porosity_points(work):
+    """The 4 h set punched on heaps of the case's width compacted to 0.45 / 0.55 / 0.65 with contacts at
+    the settling's softened 2 MPa and at the ice's 195 MPa (the assembly starting from the same)."""
+    points, extra = [], {}
+    for modulus in (2e6, 1.95e8):
+        for porosity in (0.45, 0.55, 0.65):
+            stage, info = compacted_keel(work, porosity, modulus=modulus, box=WIDE_BOX, max_pressure=CURVE_MAX_PRESSURE)
+            row = {"contacts E (MPa)": f"{modulus / 1e6:g}", "keel": f"compacted to {porosity:g}"}
+            if stage is None:
+                points.append((row, {"refused": info}))
+                extra[f"E {modulus / 1e6:g} MPa, {porosity:g}"] = f"refused: {info}"
+                continue
+            c = info["compaction"]
+            extra[f"E {modulus / 1e6:g} MPa, {porosity:g}"] = (
+                "settled %.3f, closed to %.3f under %.1f kPa (mean overlap %.2f mm), %.3f after the hold at 500 Pa"
+                % (info["settled"], info["closed"], c["lid_pressure_when_closed_Pa"] / 1e3,
+                   1e3 * c["overlaps_when_closed"]["mean_overlap_m"], info["held"]))
+            points.append((row, dict(run=os.path.join(work, "porosity", f"E{modulus:g}_{porosity:g}"), stage=stage,
+                                     speed=0.05, keel_modulus=modulus, box=WIDE_BOX)))
+    return points, extra
+
+
+def write_compaction_study(outputs, rows):
+    import numpy as np
+    keys = list(rows[0][0])
+    lines = [",".join(keys)] + [",".join(fmt(r[k]) for k in keys) for r, _ in rows]
+    iceCases.write_atomically(outputs[0], "\n".join(lines) + "\n")
+    md = [f"Reduced heap of the case's width ({WIDE_BOX[0]} x {WIDE_BOX[1]} m, the ice of {WIDE_BOX[2]} m at porosity "
+          f"{ICE_POROSITY}), closed towards {CURVE_TARGET} at 0.05 m/s, frictionless between blocks, until the lid "
+          f"needs {CURVE_MAX_PRESSURE / 1e3:g} kPa (studies/punchStudies.py compaction; revision "
+          f"{iceCases.git_revision()})", "",
+          "| contacts E (MPa) | spheres (mm) | plates touch at | porosity at 1 / 10 / 50 kPa | closest (lid kPa) | "
+          "mean / max overlap between blocks there (mm) | after the hold at 500 Pa | blocks tilted over 30 deg: "
+          "settled, compacted |", "|---|---|---|---|---|---|---|---|"]
+    for r, _ in rows:
+        at = " / ".join(fmt(r[f"porosity_at_{p}kPa"]) or "-" for p in ("1", "10", "50"))
+        closest = f"{r['reached']:.3f} ({r['lid_kPa']:.0f}{', jammed' if r['stopped'] else ''})"
+        overlap = f"{fmt(r['mean_overlap_mm'])} / {fmt(r['max_overlap_mm']) or '-'}"
+        tilted = f"{r['settled_tilted_over_30_share']:.0%}, " + (
+            f"{r['compacted_tilted_over_30_share']:.0%}" if r["compacted_tilted_over_30_share"] is not None else "-")
+        md.append(f"| {r['modulus_MPa']:g} | {r['particles_mm']:g} | {r['settled']:.3f} | {at} | {closest} | {overlap} | "
+                  f"{fmt(r['after_hold']) or '-'} | {tilted} |")
+    iceCases.write_atomically(outputs[1], "\n".join(md) + "\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for r, keel in rows:
+        porosity, lid = read_compaction_curve(keel)
+        ax.plot(np.maximum(lid, 1.0) / 1e3, porosity,
+                label=f"contacts E = {r['modulus_MPa']:g} MPa, {r['particles_mm']:g} mm spheres")
+    ax.set(xscale="log", xlabel="lid pressure (kPa)", ylabel="porosity between the plates",
+           title="compacting the reduced heap (studies/punchStudies.py compaction)")
+    ax.axhspan(0.3, 0.45, color="0.9", label="laboratory rubble 0.30-0.45")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(outputs[2] + ".tmp.png", dpi=90)
+    os.replace(outputs[2] + ".tmp.png", outputs[2])
+    print("\n".join(md))
+
+
 COLUMNS = ["peak_N", "travel_at_peak_mm", "freeze_bonds", "broken_bonds", "first_travel_mm", "first_force_N",
            "first_rise", "first_from_load_cm", "first_height", "first_mode", "bottom_centre_tension_share", "wall_s"]
 
@@ -201,7 +361,7 @@ def fmt(v):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("study", choices=("cause", "sweep"))
+    ap.add_argument("study", choices=("cause", "sweep", "compaction", "porosity"))
     ap.add_argument("--work", default=os.path.join(CASE, "runs", "punchStudies"))
     ap.add_argument("--jobs", type=iceCases.whole_number(1, 2), default=2)
     ap.add_argument("--publish", action="store_true", help="run nothing; copy the study's files into ../results/")
@@ -214,7 +374,10 @@ def main():
                                       open(outputs[1]).read())
         return
     os.makedirs(a.work, exist_ok=True)
-    points, extra = (cause_points if a.study == "cause" else sweep_points)(a.work)
+    if a.study == "compaction":
+        write_compaction_study(outputs, compaction_study(a.work, a.jobs))
+        return
+    points, extra = {"cause": cause_points, "sweep": sweep_points, "porosity": porosity_points}[a.study](a.work)
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         futures = [(row, pool.submit(punch, **kw) if "run" in kw else None, kw) for row, kw in points]
         results = []

@@ -164,6 +164,10 @@ SavedRubble readStage(hid_t file, const std::string& path)
             r.plateHoldPressure = readScalarAttribute(root.get(), "plateHoldPressure", path);
         }
     }
+    if (H5Aexists(root.get(), "contactYoungsModulus") > 0)
+    {
+        r.contactYoungsModulus = readScalarAttribute(root.get(), "contactYoungsModulus", path);
+    }
     return r;
 }
 
@@ -200,6 +204,10 @@ void SavedRubble::write(const std::string& path) const
             writeScalarAttribute(root.get(), "plateBottom", plateBottom, path);
             writeScalarAttribute(root.get(), "plateTop", plateTop, path);
             writeScalarAttribute(root.get(), "plateHoldPressure", plateHoldPressure, path);
+        }
+        if (std::isfinite(contactYoungsModulus))
+        {
+            writeScalarAttribute(root.get(), "contactYoungsModulus", contactYoungsModulus, path);
         }
     });
 }
