@@ -356,7 +356,8 @@ COLUMNS = ["peak_N", "travel_at_peak_mm", "freeze_bonds", "broken_bonds", "first
 def fmt(v):
     if v is None:
         return ""
-    return f"{v:.4g}" if isinstance(v, float) else str(v)
+    # the case's own paths as a reader of the published table finds them
+    return f"{v:.4g}" if isinstance(v, float) else str(v).replace(CASE + os.sep, "")
 
 
 def main():
@@ -393,13 +394,13 @@ def main():
     lines += [",".join([fmt(row[k]) for k in keys] + [fmt(r.get(c)) for c in COLUMNS]) for row, r, _ in results]
     iceCases.write_atomically(outputs[0], "\n".join(lines) + "\n")
     md = [f"Reduced punch, {a.study} (studies/punchStudies.py {a.study}; revision {iceCases.git_revision()})", ""]
-    md += [f"- {k}: {v}" for k, v in extra.items()] + [""]
+    md += [f"- {k}: {fmt(v)}" for k, v in extra.items()] + [""]
     md += ["| " + " | ".join(keys) + " | peak (N) at (mm) | freeze-bonds / broken | first freeze-bond failure: "
            "travel (mm), force (N), rise, from load line (cm), height in keel, mode | bottom-centre tension share "
            "of the first 10 |", "|" + "---|" * (len(keys) + 4)]
     for row, r, _ in results:
         if "refused" in r:
-            md.append("| " + " | ".join(fmt(row[k]) for k in keys) + f" | refused: {r['refused']} | | | |")
+            md.append("| " + " | ".join(fmt(row[k]) for k in keys) + f" | refused: {fmt(r['refused'])} | | | |")
             continue
         first = ("%.2f, %.0f, x%.1f, %.0f, %.2f, %s" % (r["first_travel_mm"], r["first_force_N"], r["first_rise"] or 0,
                                                          r["first_from_load_cm"], r["first_height"], r["first_mode"])
