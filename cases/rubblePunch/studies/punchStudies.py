@@ -17,12 +17,19 @@ all), 60 mm of travel; its first freeze-bond failures come from postProcessing/b
           at bonding is reported: a compacted heap springs back when the lid backs off), and on
           keels compacted to 0.30-0.45 whose lid holds the target gap while they are bonded
           ("held": the freeze-bonds made while the compaction's pressure acts).
+  compaction  a reduced heap of the case's width (1.6 x 0.94 m) closed towards 0.30 with the
+          contacts and the blocks' bonds at 2 MPa (the settling's), 20 MPa and the ice's 195 MPa,
+          and at 195 MPa with 37 mm spheres in 3 layers, until the lid needs 100 kPa: the
+          compaction curves, the overlaps between blocks, the blocks' tilts (4 heaps, no punch).
+  porosity  the 4 h set punched on heaps of that width compacted to 0.45 / 0.55 / 0.65 at 2 and
+          195 MPa (the assembly starting from the keel's modulus); a target the ice-stiff
+          heap cannot reach is a table row with the jam's message.
 
 Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
 marked). --publish copies the three into ../results/ as punchStudy_<study>.* and the table
 into ../README.md (its generated block "punchStudy <study> table").
 
-usage: studies/punchStudies.py {cause,sweep} [--work DIR] [--jobs N] [--publish]
+usage: studies/punchStudies.py {cause,sweep,compaction,porosity} [--work DIR] [--jobs N] [--publish]
        (default WORK runs/punchStudies; each about 6 min on 2 cores)"""
 import argparse
 import concurrent.futures
