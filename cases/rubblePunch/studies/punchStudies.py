@@ -24,18 +24,22 @@ all), 60 mm of travel; its first freeze-bond failures come from postProcessing/b
   porosity  the 4 h set punched on heaps of that width compacted to 0.45 / 0.55 / 0.65 at 2 and
           195 MPa (the assembly starting from the keel's modulus); a target the ice-stiff
           heap cannot reach is a table row with the jam's message.
+  stiffkeel  the case's own cuboid keel compacted with the ice's stiffness to 0.45 (it jams near
+          0.435 under 100 kPa; the reduced heaps, 1.8 block layers thick, at 0.60) and punched
+          as the case does (100 mm, its area correction) at 0.05 and the laboratory's 0.005 m/s.
 
 Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
 marked). --publish copies the three into ../results/ as punchStudy_<study>.* and the table
 into ../README.md (its generated block "punchStudy <study> table").
 
-usage: studies/punchStudies.py {cause,sweep,compaction,porosity} [--work DIR] [--jobs N] [--publish]
+usage: studies/punchStudies.py {cause,sweep,compaction,porosity,stiffkeel} [--work DIR] [--jobs N] [--publish]
        (default WORK runs/punchStudies; each about 6 min on 2 cores)"""
 import argparse
 import concurrent.futures
 import json
 import os
 import re
+import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -176,6 +180,10 @@ def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set
     run = iceCases.prepared_run(run, prepare, upstream=[stage])
     if not iceCases.finished(run):
         iceCases.run_app("ridgeDEM", run, 1, ["-stage", "all"], "log.ridgeDEM")
+    return figures(run)
+
+
+def figures(run):
     s = iceCases.summary(run)
     f = first_failures(run)
     first = f["first_failure"] or {}
@@ -317,6 +325,75 @@ def porosity_points(work):
     return points, extra
 
 
+STIFF_KEEL = {"modulus": 1.95e8, "porosity": 0.45, "max_pressure": 100e3}
+
+
+def full_keel(work, modulus, porosity, max_pressure):
+    """The case's cuboid keel (keels/cuboid's dictionaries, its box and ice) compacted to `porosity`
+    with the contacts and the blocks' bonds at `modulus`: (stage, compaction.json) or (None, the reason)."""
+    def prepare(folder):
+        os.makedirs(os.path.join(folder, "DEM"))
+        shutil.copytree(os.path.join(CASE, "keels", "cuboid", "constant"), os.path.join(folder, "constant"))
+        shutil.copy(os.path.join(TOP, "cases", "rubbleBeam", "DEM", "in.rubbleBeam"), os.path.join(folder, "DEM"))
+        props = os.path.join(folder, "constant", "rubbleProperties")
+        iceCases.set_entry(props, "compaction.targetPorosity", porosity)
+        iceCases.set_entry(props, "compaction.maxPressure", f"{max_pressure:g}")
+        iceCases.add_entry(props, "compaction.youngsModulus", f"{modulus:g}")
+
+    keel = iceCases.prepared_run(os.path.join(work, "keels", f"cuboid_E{modulus:g}_{porosity:g}"), prepare)
+    stage = os.path.join(keel, "DEM", "compacted.h5")
+    if not os.path.exists(stage):
+        try:
+            if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
+                iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
+            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
+        except RuntimeError as error:
+            return None, iceCases.fatal_message(error)
+    return stage, json.load(open(os.path.join(keel, "postProcessing", "compaction.json")))
+
+
+def full_punch(run, stage, speed, keel_modulus):
+    """The case's punch (its dictionaries, 100 mm, the cuboid keel's area correction as ./Allrun
+    sets it) on another keel; returns its figures (summary + beamPhase)."""
+    def prepare(folder):
+        iceCases.copy_case(CASE, folder)
+        props = os.path.join(folder, "constant", "ridgeProperties")
+        cf = json.load(open(os.path.join(TOP, "cases", "rubbleBeam", "results", "summary_cuboid.json")))["area_correction"]
+        iceCases.set_entry(props, "keel.settledRubble", '"%s"' % stage)
+        iceCases.set_entry(props, "test.speed", speed)
+        iceCases.set_entry(props, "assembly.youngsModulus", f"{keel_modulus:g}")
+        iceCases.set_entry(os.path.join(folder, "constant", "freezeBondProperties"), "areaCorrection.value", cf)
+
+    run = iceCases.prepared_run(run, prepare, upstream=[stage])
+    if not iceCases.finished(run):
+        iceCases.run_app("ridgeDEM", run, 1, ["-stage", "all"], "log.ridgeDEM")
+    return figures(run)
+
+
+def stiff_keel_points(work):
+    """The case's cuboid keel compacted with the ice's stiffness to 0.45 (what it reaches under
+    50 kPa), punched at 0.05 m/s and the laboratory's 0.005 m/s."""
+    stage, info = full_keel(work, **STIFF_KEEL)
+    if stage is None:
+        raise RuntimeError(f"the case's keel does not compact at the ice's stiffness: {info}")
+    published = json.load(open(os.path.join(CASE, "results", "summary_cuboid.json")))
+    extra = {"keel": "the case's cuboid keel (3.05 x 0.94 m, 0.5 m of rubble at 0.35 worth of ice), contacts and "
+                     "blocks at 195 MPa from the compaction on: plates touch at %.3f, closed to %.3f under %.0f kPa "
+                     "(mean overlap between blocks %.2f mm), %.3f after the hold at 500 Pa"
+                     % (info["porosity_when_plates_touched"], info["porosity_when_closed"],
+                        info["lid_pressure_when_closed_Pa"] / 1e3,
+                        1e3 * info["overlaps_when_closed"]["mean_overlap_m"], info["porosity_after_hold"]),
+             "the case's own (softened 2 MPa compaction to 0.35, published, 0.005 m/s)":
+                 "peak %.0f N at %.1f mm, %d freeze-bonds, %d broken"
+                 % (published["peak_force_N"], 1e3 * published["travel_at_peak_m"],
+                    published.get("freeze_bonds", -1), published["broken_bonds"])}
+    points = [({"keel": "ice-stiff, 0.45", "speed (m/s)": speed},
+               dict(run=os.path.join(work, "stiffKeel", f"speed{speed:g}"), stage=stage, speed=speed,
+                    keel_modulus=STIFF_KEEL["modulus"], full=True))
+              for speed in (0.05, 0.005)]
+    return points, extra
+
+
 def write_compaction_study(outputs, rows):
     import numpy as np
     keys = list(rows[0][0])
@@ -369,7 +446,7 @@ def fmt(v):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("study", choices=("cause", "sweep", "compaction", "porosity"))
+    ap.add_argument("study", choices=("cause", "sweep", "compaction", "porosity", "stiffkeel"))
     ap.add_argument("--work", default=os.path.join(CASE, "runs", "punchStudies"))
     ap.add_argument("--jobs", type=iceCases.whole_number(1, 2), default=2)
     ap.add_argument("--publish", action="store_true", help="run nothing; copy the study's files into ../results/")
@@ -385,9 +462,13 @@ def main():
     if a.study == "compaction":
         write_compaction_study(outputs, compaction_study(a.work, a.jobs))
         return
-    points, extra = {"cause": cause_points, "sweep": sweep_points, "porosity": porosity_points}[a.study](a.work)
+    points, extra = {"cause": cause_points, "sweep": sweep_points, "porosity": porosity_points,
+                     "stiffkeel": stiff_keel_points}[a.study](a.work)
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-        futures = [(row, pool.submit(punch, **kw) if "run" in kw else None, kw) for row, kw in points]
+        def run_point(kw):
+            kw = dict(kw)
+            return full_punch(**{k: v for k, v in kw.items() if k != "full"}) if kw.get("full") else punch(**kw)
+        futures = [(row, pool.submit(run_point, kw) if "run" in kw else None, kw) for row, kw in points]
         results = []
         for row, future, kw in futures:
             try:
