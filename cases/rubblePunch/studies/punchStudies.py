@@ -329,13 +329,17 @@ STIFF_KEEL = {"modulus": 1.95e8, "porosity": 0.45, "max_pressure": 100e3}
 
 
 def full_keel(work, modulus, porosity, max_pressure):
-    """The case's cuboid keel (keels/cuboid's dictionaries, its box and ice) compacted to `porosity`
+    """The case's cuboid keel (keels/cuboid's dictionaries, its box and its ice) compacted to `porosity`
     with the contacts and the blocks' bonds at `modulus`: (stage, compaction.json) or (None, the reason)."""
     def prepare(folder):
         os.makedirs(os.path.join(folder, "DEM"))
         shutil.copytree(os.path.join(CASE, "keels", "cuboid", "constant"), os.path.join(folder, "constant"))
         shutil.copy(os.path.join(TOP, "cases", "rubbleBeam", "DEM", "in.rubbleBeam"), os.path.join(folder, "DEM"))
         props = os.path.join(folder, "constant", "rubbleProperties")
+        # the case's ice (that of a rubbleThickness layer at its own target), compacted to another porosity
+        ice = float(iceCases.get_entry(props, "blocks.rubbleThickness")) * (
+            1 - float(iceCases.get_entry(props, "compaction.targetPorosity")))
+        iceCases.set_entry(props, "blocks.rubbleThickness", f"{ice / (1 - porosity):.6g}")
         iceCases.set_entry(props, "compaction.targetPorosity", porosity)
         iceCases.set_entry(props, "compaction.maxPressure", f"{max_pressure:g}")
         iceCases.add_entry(props, "compaction.youngsModulus", f"{modulus:g}")
