@@ -485,7 +485,8 @@ def main():
     lines = [",".join(keys + COLUMNS)]
     lines += [",".join([fmt(row[k]) for k in keys] + [fmt(r.get(c)) for c in COLUMNS]) for row, r, _ in results]
     iceCases.write_atomically(outputs[0], "\n".join(lines) + "\n")
-    md = [f"Reduced punch, {a.study} (studies/punchStudies.py {a.study}; revision {iceCases.git_revision()})", ""]
+    scene = "The case's punch on another keel" if a.study == "stiffkeel" else "Reduced punch"
+    md = [f"{scene}, {a.study} (studies/punchStudies.py {a.study}; revision {iceCases.git_revision()})", ""]
     md += [f"- {k}: {fmt(v)}" for k, v in extra.items()] + [""]
     md += ["| " + " | ".join(keys) + " | peak (N) at (mm) | freeze-bonds / broken | first freeze-bond failure: "
            "travel (mm), force (N), rise, from load line (cm), height in keel, mode | bottom-centre tension share "
@@ -527,7 +528,8 @@ def plot(path, results, keys, study):
         whole.set(xlabel="platen travel (mm)", ylabel="platen force (N)", title=f"{keys[0]}: {group}")
         start.set(xlim=(0, 6), xlabel="platen travel (mm)", title="first 6 mm; dots: first freeze-bond failure")
         whole.legend(fontsize=7)
-    fig.suptitle(f"reduced punch, {study} (studies/punchStudies.py)")
+    scene = "the case's punch on another keel" if study == "stiffkeel" else "reduced punch"
+    fig.suptitle(f"{scene}, {study} (studies/punchStudies.py)")
     fig.tight_layout()
     fig.savefig(path + ".tmp.png", dpi=80)
     os.replace(path + ".tmp.png", path)
