@@ -808,7 +808,7 @@ void RubbleScene::writeSettlingSummary() const
 }
 
 
-OverlapStatistics RubbleScene::blockOverlaps() const
+std::vector<ParticleSpec> RubbleScene::particlesNow() const
 {
     const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
     std::vector<ParticleSpec> particles(positions.size());
@@ -818,6 +818,15 @@ OverlapStatistics RubbleScene::blockOverlaps() const
         particles[k].radius = 0.5*settings_.particleDiameter;
         particles[k].block = blockOfTag_[k];
     }
+    return particles;
+}
+
+
+OverlapStatistics RubbleScene::blockOverlaps() const
+{
+    const std::vector<ParticleSpec> particles = particlesNow();
+    std::vector<Vec3> positions;
+    for (const ParticleSpec& p : particles) positions.push_back(p.position);
     return overlapStatistics(particles, positions);
 }
 
@@ -1047,14 +1056,7 @@ void RubbleScene::release()
 
 void RubbleScene::freezeBond()
 {
-    const std::vector<Vec3> positions = allPositionsByTag(*lmp_);
-    std::vector<ParticleSpec> now(positions.size());
-    for (std::size_t k = 0; k < now.size(); ++k)
-    {
-        now[k].position = positions[k];
-        now[k].radius = 0.5*settings_.particleDiameter;
-        now[k].block = blockOfTag_[k];
-    }
+    const std::vector<ParticleSpec> now = particlesNow();
     if
     (
         auto* heatBalance = dynamic_cast<HeatBalanceAreaCorrection*>(&freezeBondProperties_.areaCorrection())

@@ -125,13 +125,25 @@ TEST(SavedRubble, WriteAndReadBackBitForBit)
 }
 
 
-TEST(SavedRubble, KindAndProvenanceAreKeptAndAnotherKindIsRefused)
+namespace
+{
+
+SavedRubble oneParticleRubble()
 {
     SavedRubble s;
     SavedParticle p;
     p.radius = 0.01;
     p.density = 917.0;
     s.particles = {p};
+    return s;
+}
+
+} // namespace
+
+
+TEST(SavedRubble, KindAndProvenanceAreKeptAndAnotherKindIsRefused)
+{
+    SavedRubble s = oneParticleRubble();
     s.kind = SavedRubble::settledRubble;
     s.provenance = "constant/rubbleProperties/box.length = 1.6\n";
     const std::string path = (std::filesystem::temp_directory_path() / "savedRubbleKindTest.h5").string();
@@ -154,11 +166,7 @@ TEST(SavedRubble, KindAndProvenanceAreKeptAndAnotherKindIsRefused)
 
 TEST(SavedRubble, ContactModulusIsKeptAndUnrecordedIsNaN)
 {
-    SavedRubble s;
-    SavedParticle p;
-    p.radius = 0.01;
-    p.density = 917.0;
-    s.particles = {p};
+    SavedRubble s = oneParticleRubble();
     const std::string path = (std::filesystem::temp_directory_path() / "savedRubbleModulusTest.h5").string();
     s.write(path);
     EXPECT_TRUE(std::isnan(SavedRubble::read(path).contactYoungsModulus));

@@ -104,6 +104,20 @@ def block_tilts(stage):
     return np.array(tilts)
 
 
+def settle_and_compact(keel):
+    """(keel's DEM/compacted.h5, None), settled and compacted unless it is there; (None, the
+    application's message) where it could not be compacted."""
+    stage = os.path.join(keel, "DEM", "compacted.h5")
+    if not os.path.exists(stage):
+        try:
+            if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
+                iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
+            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
+        except RuntimeError as error:
+            return None, iceCases.fatal_message(error)
+    return stage, None
+
+
 def compacted_keel(work, porosity, held=False, modulus=None, box=BOX, max_pressure=None, fine=False):
     """A keel of the same ice as the settled heap (a rubbleThickness layer at porosity 0.40), rained
     in and compacted between plates to `porosity`: (stage file, its summary) or (None, the reason).
@@ -131,14 +145,9 @@ def compacted_keel(work, porosity, held=False, modulus=None, box=BOX, max_pressu
                                f"{modulus:g}")
 
     keel = iceCases.prepared_run(keel_folder(work, porosity, held, modulus, box, max_pressure, fine), prepare)
-    stage = os.path.join(keel, "DEM", "compacted.h5")
-    if not os.path.exists(stage):
-        try:
-            if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
-                iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
-            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
-        except RuntimeError as error:
-            return None, iceCases.fatal_message(error)
+    stage, refused = settle_and_compact(keel)
+    if refused:
+        return None, refused
     line = next(l for l in open(os.path.join(keel, "log.compact")) if l.startswith("Compacted"))
     found = re.search(r"porosity ([\d.]+) -> ([\d.]+), ([\d.]+) after the lid backed off", line)
     info = {"settled": float(found.group(1)), "closed": float(found.group(2)), "held": float(found.group(3))}
@@ -345,14 +354,9 @@ def full_keel(work, modulus, porosity, max_pressure):
         iceCases.add_entry(props, "compaction.youngsModulus", f"{modulus:g}")
 
     keel = iceCases.prepared_run(os.path.join(work, "keels", f"cuboid_E{modulus:g}_{porosity:g}"), prepare)
-    stage = os.path.join(keel, "DEM", "compacted.h5")
-    if not os.path.exists(stage):
-        try:
-            if not os.path.exists(os.path.join(keel, "DEM", "settled.h5")):
-                iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "settle"], "log.settle")
-            iceCases.run_app("rubbleDEM", keel, 1, ["-stage", "compact"], "log.compact")
-        except RuntimeError as error:
-            return None, iceCases.fatal_message(error)
+    stage, refused = settle_and_compact(keel)
+    if refused:
+        return None, refused
     return stage, json.load(open(os.path.join(keel, "postProcessing", "compaction.json")))
 
 
