@@ -157,7 +157,8 @@ RubbleSettings RubbleSettings::readCase(const std::string& caseDir, const std::s
         }
         if (c.found("youngsModulus"))
         {
-            s.compactionYoungsModulus = c.getPositiveScalarOrDefault("youngsModulus", 1.0);
+            s.compactionYoungsModulus = c.getScalar("youngsModulus");
+            if (!(s.compactionYoungsModulus > 0.0)) c.fail("youngsModulus", "must be positive (Pa)");
         }
         s.holdTime = c.getScalarOrDefault("holdTime", s.holdTime);
         if (!(s.holdTime >= 0.0)) c.fail("holdTime", "must not be negative");
@@ -840,7 +841,7 @@ void RubbleScene::writeCompactionSummary() const
                     {"max_overlap_m", o.maxOverlap}};
     };
     Json j;
-    j["youngs_modulus_Pa"] = compacted_.youngsModulus;
+    j["youngs_modulus_Pa"] = compactionIce_.material.youngsModulus;
     j["target_porosity"] = settings_.targetPorosity;
     j["porosity_when_plates_touched"] = compacted_.startPorosity;
     j["porosity_when_closed"] = compacted_.closedPorosity > 0.0 ? Json(compacted_.closedPorosity) : Json();
@@ -998,13 +999,12 @@ void RubbleScene::compact()
     compacted_.time = t;
     compacted_.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     compacted_.heldOverlaps = blockOverlaps();
-    compacted_.youngsModulus = compactionIce_.material.youngsModulus;
     std::ostringstream msg;
     msg << "Compacted in " << t << " s (" << formatDuration(compacted_.wall) << "): porosity " << compacted_.startPorosity
         << " -> " << compacted_.closedPorosity << ", " << compacted_.porosity << " after the lid backed off to "
         << settings_.holdPressure << " Pa; plates at z = " << compacted_.plateBottom << " and "
         << compacted_.plateTop << " m; lid " << compacted_.lidPressure << " Pa, floor " << compacted_.floorPressure
-        << " Pa at the end of the hold; contacts at E = " << compacted_.youngsModulus << " Pa: "
+        << " Pa at the end of the hold; contacts at E = " << compactionIce_.material.youngsModulus << " Pa: "
         << compacted_.closedOverlaps.touchingPairs << " touching block pairs, mean overlap "
         << compacted_.closedOverlaps.meanOverlap*1e6 << " um when closed (lid " << compacted_.closedLidPressure
         << " Pa), " << compacted_.heldOverlaps.touchingPairs << " pairs and " << compacted_.heldOverlaps.meanOverlap*1e6

@@ -148,13 +148,9 @@ def compacted_keel(work, porosity, held=False, modulus=None, box=BOX, max_pressu
     stage, refused = settle_and_compact(keel)
     if refused:
         return None, refused
-    line = next(l for l in open(os.path.join(keel, "log.compact")) if l.startswith("Compacted"))
-    found = re.search(r"porosity ([\d.]+) -> ([\d.]+), ([\d.]+) after the lid backed off", line)
-    info = {"settled": float(found.group(1)), "closed": float(found.group(2)), "held": float(found.group(3))}
-    summary = os.path.join(keel, "postProcessing", "compaction.json")
-    if os.path.exists(summary):
-        info["compaction"] = json.load(open(summary))
-    return stage, info
+    c = json.load(open(os.path.join(keel, "postProcessing", "compaction.json")))
+    return stage, {"settled": c["porosity_when_plates_touched"], "closed": c["porosity_when_closed"] or 0.0,
+                   "held": c["porosity_after_hold"], "compaction": c}
 
 
 def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set=None, support="clamped",
