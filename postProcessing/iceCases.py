@@ -181,6 +181,20 @@ def uncompacted(path, porosity):
     add_entry(path, "blocks.expectedPorosity", porosity)
 
 
+def softened_compaction(path):
+    """A rubbleProperties (path) compacted with the contacts and the blocks' bonds at the
+    settling's softened modulus (compaction.youngsModulus = settling.youngsModulus), as the rubble
+    cases were before 2026-11-28. For reduced heaps that test the stages: two or three blocks thick,
+    ice-stiff blocks jam near porosity 0.60 (cases/rubblePunch/README.md, "Compaction at the ice's
+    stiffness"), softened ones reach their target. A ridge or punch on such a keel must start its
+    assembly at the same modulus (ridgeProperties assembly.youngsModulus)."""
+    modulus = get_entry(path, "settling.youngsModulus").strip()
+    try:
+        set_entry(path, "compaction.youngsModulus", modulus)
+    except KeyError:
+        add_entry(path, "compaction.youngsModulus", modulus)
+
+
 def _with_override(text, dotted, value):
     """text with `a { b { key value; } }` added: into the deepest of a, a.b, ... that
     it has, otherwise before its closing `// ****` line (or at its end)."""
@@ -248,10 +262,13 @@ def copy_case(source, target):
 
 def small_rubble_case(source, path, length, width, thickness, max_time, tilt, entries=None):
     """A reduced copy of a rubble case (cases/rubbleBeam): a shorter box, a
-    thinner layer, a shorter settling; `entries` sets further dotted entries
-    of its rubbleProperties."""
+    thinner layer, a shorter settling, compacted at the settling's softened
+    contacts (softened_compaction: a heap this thin of ice-stiff blocks jams);
+    `entries` sets further dotted entries of its rubbleProperties (among them,
+    compaction.youngsModulus again)."""
     copy_case(source, path)
     props = os.path.join(path, "constant", "rubbleProperties")
+    softened_compaction(props)
     set_entry(props, "box.length", length)
     set_entry(props, "box.width", width)
     set_entry(props, "blocks.rubbleThickness", thickness)

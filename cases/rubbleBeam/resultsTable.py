@@ -28,6 +28,8 @@ ROWS = [
     ("porosity as settled (block volume)", lambda s: f"**{s['porosity']:.3f}**"),
     ("compaction: porosity between the plates", lambda s: compaction(s, lambda c:
         f"{c['porosity_when_plates_touched']:.3f} -> **{c['porosity']:.3f}** (target {c['target_porosity']})")),
+    ("compaction: contacts and blocks' bonds at", lambda s: compaction(s, lambda c:
+        f"E = {c['youngs_modulus_Pa'] / 1e6:.3g} MPa" if "youngs_modulus_Pa" in c else "the settling's modulus")),
     ("compaction: lid / floor pressure at bonding", lambda s: compaction(s, lambda c:
         f"{c['lid_pressure_at_bonding_Pa'] / 1e3:.1f} / {c['floor_pressure_at_bonding_Pa'] / 1e3:.1f} kPa")),
     ("released (bonded, plates gone): layer, porosity", lambda s: compaction(s, lambda c:
@@ -50,7 +52,7 @@ ROWS = [
     ("particle-level (what the bonds break at)",
      lambda s: f"tensile {s['freeze_bond_tensile_mean_Pa'] / 1e3:.2f} kPa, shear {s['freeze_bond_shear_mean_Pa'] / 1e3:.1f} kPa"
                f" ({s.get('freeze_bond_particle_strengths', 'direct')})"),
-    ("wall time, build + settle + compact + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} ranks"),
+    ("wall time, build + settle + compact + bond", lambda s: f"**{minutes(s['wall_s'])}** on {s['ranks']} rank{'s' if s['ranks'] > 1 else ''}"),
 ]
 
 

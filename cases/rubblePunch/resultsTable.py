@@ -68,17 +68,28 @@ def table(case):
     return "\n".join(lines) + "\n"
 
 
+# A keel's hydrostatic punch of the keel it had before (the row run "<keel>-previousKeel" of
+# punchSummary.csv, summary_<keel>-previousKeel.json), kept while its resolved levels are still on it.
+PREVIOUS = "previousKeel"
+
+
 def water_table(case):
     """Each keel at the hydrostatic level and the cfd and vof levels published, side by side, from
-    results/punchSummary.csv; None when no keel has a resolved level published."""
+    results/punchSummary.csv (with the hydrostatic punch of the keel before, where it is kept: a
+    row says which keel each column was punched on); None when no keel has a resolved level
+    published."""
     with open(os.path.join(case, "results", "punchSummary.csv"), newline="") as handle:
         rows = {r["run"]: r for r in csv.DictReader(handle)}
     names = [n for k in KEELS if k in rows and (f"{k}-cfd" in rows or f"{k}-vof" in rows)
-             for n in (k, f"{k}-cfd", f"{k}-vof") if n in rows]
+             for n in (k, f"{k}-{PREVIOUS}", f"{k}-cfd", f"{k}-vof") if n in rows]
     if not names:
         return None
-    lines = ["| | " + " | ".join(f"{rows[n]['run'].split('-')[0]} {rows[n]['water']}" for n in names) + " |",
-             "|---|" + "---|" * len(names)]
+
+    def heading(name):
+        keel = name.split("-")[0]
+        return f"{keel} {rows[name]['water']}" + (", previous keel" if name.endswith(PREVIOUS) else "")
+
+    lines = ["| | " + " | ".join(heading(n) for n in names) + " |", "|---|" + "---|" * len(names)]
 
     def row(label, cell):
         lines.append(f"| {label} | " + " | ".join(cell(rows[n]) for n in names) + " |")
@@ -86,6 +97,11 @@ def water_table(case):
     def number(r, key):
         return float(r[key])
 
+    def keel(r):    # which keel a level was punched on: the published levels need not share one
+        s = json.load(open(os.path.join(case, "results", f"summary_{r['run']}.json")))
+        return f"{s['keel_thickness_m']:.3f} m, {s['freeze_bonds']} freeze-bonds"
+
+    row("keel: thickness, freeze-bonds", keel)
     row("platen speed [m/s]", lambda r: f"{number(r, 'platen_speed_m_per_s'):g}")
     row("largest platen force", lambda r: f"{number(r, 'peak_force_N'):.0f} N at {number(r, 'travel_at_peak_mm'):.1f} mm")
     row("buoyancy share at that sample", lambda r: f"{number(r, 'buoyancy_share_at_peak_N'):.0f} N")

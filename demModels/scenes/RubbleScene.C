@@ -1048,8 +1048,8 @@ void RubbleScene::release()
         << formatDuration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
         << "): layer " << released_.bottom << " to " << released_.top << " m, thickness " << released_.thickness
         << " m, porosity " << released_.porosity << ", " << 100*released_.volumeAboveWater
-        << " % of the ice above water (bonds at the compaction's softened stiffness, unbreakable: the geometry "
-        << "the plates leave, not the bonds' strength)";
+        << " % of the ice above water (bonds at the compaction's stiffness, E = " << compactionIce_.material.youngsModulus
+        << " Pa, unbreakable: the geometry the plates leave, not the bonds' strength)";
     context_.log(msg.str());
 }
 

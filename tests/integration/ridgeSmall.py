@@ -89,6 +89,10 @@ def ridge_case(template, path, work, controls=(), entries=()):
     open(props, "w").write(text.replace("\nconsolidatedLayer",
                                         f"\nbox\n{{\n    length {LENGTH};\n    width {WIDTH};\n}}\n\nconsolidatedLayer", 1))
     iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.abspath(keel_file(work)))
+    # the small keel came to rest at the settling's contacts (the punch's own keels compact at the ice's)
+    iceCases.set_entry(props, "assembly.youngsModulus",
+                       iceCases.get_entry(os.path.join(CASES, "rubbleBeam", "constant", "rubbleProperties"),
+                                          "settling.youngsModulus").strip())
     for entry, value in entries:
         iceCases.set_entry(props, entry, value)
     for entry, value in controls:

@@ -190,7 +190,7 @@ check(iceCases.summary(beam)["freeze_bonds"] == one["freeze_bonds"],
 stiff = iceCases.copy_case(beam, os.path.join(work, "beamStiff"))
 shutil.copy(os.path.join(beam, "DEM", "settled.h5"), os.path.join(stiff, "DEM", "settled.h5"))
 modulus = 10 * float(iceCases.get_entry(props, "settling.youngsModulus"))
-iceCases.add_entry(os.path.join(stiff, "constant", "rubbleProperties"), "compaction.youngsModulus", modulus)
+iceCases.set_entry(os.path.join(stiff, "constant", "rubbleProperties"), "compaction.youngsModulus", modulus)
 iceCases.set_entry(os.path.join(stiff, "constant", "rubbleProperties"), "compaction.maxPressure", 1e6)
 iceCases.run_app(app, stiff, 1, ["-stage", "compact"], "log.compact")
 hard = json.load(open(os.path.join(stiff, "postProcessing", "compaction.json")))

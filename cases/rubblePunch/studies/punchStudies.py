@@ -26,7 +26,9 @@ all), 60 mm of travel; its first freeze-bond failures come from postProcessing/b
           heap cannot reach is a table row with the jam's message.
   stiffkeel  the case's own cuboid keel compacted with the ice's stiffness to 0.45 (it jams near
           0.435 under 100 kPa; the reduced heaps, 1.8 block layers thick, at 0.60) and punched
-          as the case does (100 mm, its area correction) at 0.05 and the laboratory's 0.005 m/s.
+          as the case does (100 mm, its area correction) at 0.05 and the laboratory's 0.005 m/s,
+          beside the case's published punch (the case's keel since 2026-11-28; before, the
+          settling's softened contacts compacted it to 0.35).
 
 Writes WORK/<study>.csv, .md (the table) and .png (force against travel, first failures
 marked). --publish copies the three into ../results/ as punchStudy_<study>.* and the table
@@ -54,6 +56,12 @@ FREEZE_MODULI = {"ice 195 MPa": 1.95e8, "c_f x ice 38.4 MPa": 0.197 * 1.95e8, "k
 BOX = (1.6, 0.4, 0.3)               # m: length, width, rubble thickness
 TRAVEL = 0.06                       # m
 ICE_POROSITY = 0.40                 # the ice of a BOX[2] layer at this porosity is rained in
+# The reduced keels' compaction unless a point says otherwise: the settling's softened contacts and
+# a 50 kPa limit on the lid, as ../rubbleBeam had them when these studies were made (the case's
+# keels since compact at the ice's stiffness under up to 100 kPa).
+RUBBLE_PROPERTIES = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
+SETTLING_MODULUS = float(iceCases.get_entry(RUBBLE_PROPERTIES, "settling.youngsModulus"))
+STUDY_MAX_PRESSURE = 50e3
 
 
 def calibrated_4h_particle_strengths():
@@ -125,24 +133,20 @@ def compacted_keel(work, porosity, held=False, modulus=None, box=BOX, max_pressu
     the freeze-bonds are made at the target porosity while the compaction's pressure still acts
     (the reference method), not after the rubble sprang back.
     modulus: the contacts' and blocks' Young's modulus from compaction on (None: the settling's).
-    box: (length, width, thickness of the ice at porosity 0.40); max_pressure: the lid's (None: the case's)."""
+    box: (length, width, thickness of the ice at porosity 0.40); max_pressure: the lid's (None: 50 kPa)."""
     # with plates the ice rained in is that of a rubbleThickness layer at the target porosity
     thickness = box[2] * (1 - ICE_POROSITY) / (1 - porosity)
-    entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity}
-    if max_pressure:
-        entries["compaction.maxPressure"] = f"{max_pressure:g}"
+    entries = {"settling.minTime": 1, "compaction.targetPorosity": porosity,
+               "compaction.maxPressure": f"{max_pressure or STUDY_MAX_PRESSURE:g}",
+               "compaction.youngsModulus": f"{modulus or SETTLING_MODULUS:g}"}
     if fine:
         entries.update(FINE_BLOCKS)
     if held:
-        props = os.path.join(TOP, "cases", "rubbleBeam", "constant", "rubbleProperties")
-        entries["compaction.holdPressure"] = 0.99 * float(iceCases.get_entry(props, "compaction.maxPressure"))
+        entries["compaction.holdPressure"] = 0.99 * STUDY_MAX_PRESSURE
 
     def prepare(folder):
         iceCases.small_rubble_case(os.path.join(TOP, "cases", "rubbleBeam"), folder, box[0], box[1], thickness, 6, 15,
                                    entries)
-        if modulus:
-            iceCases.add_entry(os.path.join(folder, "constant", "rubbleProperties"), "compaction.youngsModulus",
-                               f"{modulus:g}")
 
     keel = iceCases.prepared_run(keel_folder(work, porosity, held, modulus, box, max_pressure, fine), prepare)
     stage, refused = settle_and_compact(keel)
@@ -179,8 +183,8 @@ def punch(run, stage, speed, freeze_modulus=None, fixed_strengths=None, bond_set
             iceCases.set_entry(bonds, "fixedSetCoeffs.sets.4h.shear", f"{fixed_strengths[1]:g}")
         if bond_set:
             iceCases.set_entry(bonds, "fixedSetCoeffs.set", bond_set)
-        if keel_modulus:    # the assembly starts from the contacts the keel came to rest with
-            iceCases.set_entry(props, "assembly.youngsModulus", f"{keel_modulus:g}")
+        # the assembly starts from the contacts the keel came to rest with
+        iceCases.set_entry(props, "assembly.youngsModulus", f"{keel_modulus or SETTLING_MODULUS:g}")
 
     run = iceCases.prepared_run(run, prepare, upstream=[stage])
     if not iceCases.finished(run):
@@ -347,7 +351,7 @@ def full_keel(work, modulus, porosity, max_pressure):
         iceCases.set_entry(props, "blocks.rubbleThickness", f"{ice / (1 - porosity):.6g}")
         iceCases.set_entry(props, "compaction.targetPorosity", porosity)
         iceCases.set_entry(props, "compaction.maxPressure", f"{max_pressure:g}")
-        iceCases.add_entry(props, "compaction.youngsModulus", f"{modulus:g}")
+        iceCases.set_entry(props, "compaction.youngsModulus", f"{modulus:g}")
 
     keel = iceCases.prepared_run(os.path.join(work, "keels", f"cuboid_E{modulus:g}_{porosity:g}"), prepare)
     stage, refused = settle_and_compact(keel)
@@ -375,19 +379,23 @@ def full_punch(run, stage, speed, keel_modulus):
 
 
 def stiff_keel_points(work):
-    """The case's cuboid keel compacted with the ice's stiffness to 0.45 (what it reaches under
-    50 kPa), punched at 0.05 m/s and the laboratory's 0.005 m/s."""
+    """The case's cuboid keel compacted with the ice's stiffness to 0.45 (it needs 24 kPa), punched
+    at 0.05 m/s and the laboratory's 0.005 m/s."""
     stage, info = full_keel(work, **STIFF_KEEL)
     if stage is None:
         raise RuntimeError(f"the case's keel does not compact at the ice's stiffness: {info}")
     published = json.load(open(os.path.join(CASE, "results", "summary_cuboid.json")))
-    extra = {"keel": "the case's cuboid keel (3.05 x 0.94 m, 0.5 m of rubble at 0.35 worth of ice), contacts and "
+    published_keel = json.load(open(os.path.join(TOP, "cases", "rubbleBeam", "results", "summary_cuboid.json")))
+    compaction = published_keel["compaction"]
+    extra = {"keel": "the case's cuboid keel (3.05 x 0.94 m, 0.325 m worth of ice), contacts and "
                      "blocks at 195 MPa from the compaction on: plates touch at %.3f, closed to %.3f under %.0f kPa "
                      "(mean overlap between blocks %.2f mm), %.3f after the hold at 500 Pa"
                      % (info["porosity_when_plates_touched"], info["porosity_when_closed"],
                         info["lid_pressure_when_closed_Pa"] / 1e3,
                         1e3 * info["overlaps_when_closed"]["mean_overlap_m"], info["porosity_after_hold"]),
-             "the case's own (softened 2 MPa compaction to 0.35, published, 0.005 m/s)":
+             "the case's published punch (its keel compacted at %.3g MPa to %.2f, %g m/s)"
+             % (compaction.get("youngs_modulus_Pa", SETTLING_MODULUS) / 1e6, compaction["target_porosity"],
+                published["platen_speed_m_per_s"]):
                  "peak %.0f N at %.1f mm, %d freeze-bonds, %d broken"
                  % (published["peak_force_N"], 1e3 * published["travel_at_peak_m"],
                     published.get("freeze_bonds", -1), published["broken_bonds"])}
