@@ -1,7 +1,8 @@
 #include "particleFluidCoupling.H"
-#include "parallelSum.H"
 #include "zeroGradientFvPatchFields.H"
 #include "mathematicalConstants.H"
+
+#include <mpi.h>
 
 namespace Foam
 {
@@ -229,7 +230,7 @@ std::vector<double> particleFluidCoupling::atParticles
             row[k] += s.share*field[s.cell][k];
         }
     }
-    sumOverRanks(values);
+    locator_.exchange().sum(values, width);
     return values;
 }
 
@@ -249,7 +250,7 @@ std::vector<double> particleFluidCoupling::scalarsAtParticles
             row[k] += s.share*fields[k][s.cell];
         }
     }
-    sumOverRanks(values);
+    locator_.exchange().sum(values, width);
     return values;
 }
 
@@ -342,7 +343,6 @@ void particleFluidCoupling::updateForces
         UPtrList<const scalarField> fields(1);
         fields.set(0, columnHeight_);
         waterHeight = scalarsAtParticles(n, fields);
-        submergedVolume_.setSize(n);
     }
 
     forces_.assign(n, {0.0, 0.0, 0.0});
@@ -350,7 +350,9 @@ void particleFluidCoupling::updateForces
     totalDrag_ = Zero;
     totalPressureForce_ = Zero;
     totalAddedMass_ = Zero;
-    currentSlip_.resize(n);
+    totalSubmergedVolume_ = 0;
+    currentSlip_.clear();
+    const labelList& centreCell = locator_.centreCells();
     for (label i = 0; i < n; ++i)
     {
         const auto& p = particles[i];
@@ -363,32 +365,57 @@ void particleFluidCoupling::updateForces
         const vector drag = K_[i]*(Uf - toVector(p.velocity));
         const vector gradient(pressureGradient[3*i], pressureGradient[3*i + 1], pressureGradient[3*i + 2]);
         vector pressure(Zero);
+        scalar submerged = 0;
         if (mixtureRho_)
         {
             // The hydrostatic part exactly on the cap under the water height
             // of the particle's columns; the dynamic part on the same volume.
             const scalar r = 0.5*p.diameter;
             const scalar h = min(max(waterHeight[i] - (p.position[2] - r), scalar(0)), 2*r);
-            submergedVolume_[i] = constant::mathematical::pi*sqr(h)*(3*r - h)/3;
-            pressure = submergedVolume_[i]*(vector(0, 0, rhoWater_*gravity_) - gradient);
+            submerged = constant::mathematical::pi*sqr(h)*(3*r - h)/3;
+            pressure = submerged*(vector(0, 0, rhoWater_*gravity_) - gradient);
         }
         else
         {
             pressure = -rho_*wetFraction_[i]*volumeOf(p)*gradient;
         }
         addedMassForce_[i] = addedMass(p, Uf, i);
+        // Every rank holding the particle has the same force; the rank with
+        // its centre gives it.
+        if (centreCell[i] < 0)
+        {
+            continue;
+        }
         const vector total = drag + pressure + addedMassForce_[i];
         forces_[i] = {total.x(), total.y(), total.z()};
         totalDrag_ += drag;
         totalPressureForce_ += pressure;
         totalAddedMass_ += addedMassForce_[i];
+        totalSubmergedVolume_ += submerged;
     }
     previousSlip_.swap(currentSlip_);
-    previousTags_.resize(n);
-    for (label i = 0; i < n; ++i)
+
+    if (Pstream::parRun())
     {
-        previousTags_[i] = particles[i].tag;
+        std::vector<double> totals
+        {
+            totalDrag_.x(), totalDrag_.y(), totalDrag_.z(),
+            totalPressureForce_.x(), totalPressureForce_.y(), totalPressureForce_.z(),
+            totalAddedMass_.x(), totalAddedMass_.y(), totalAddedMass_.z(), totalSubmergedVolume_
+        };
+        MPI_Allreduce(MPI_IN_PLACE, totals.data(), int(totals.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+        totalDrag_ = vector(totals[0], totals[1], totals[2]);
+        totalPressureForce_ = vector(totals[3], totals[4], totals[5]);
+        totalAddedMass_ = vector(totals[6], totals[7], totals[8]);
+        totalSubmergedVolume_ = totals[9];
     }
+}
+
+
+::iceCoupling::CouplingRegion particleFluidCoupling::particleRegion() const
+{
+    const boundBox box(locator_.particleRegion(surface_.active() ? surface_.level() : GREAT));
+    return {{box.min().x(), box.min().y(), box.min().z()}, {box.max().x(), box.max().y(), box.max().z()}};
 }
 
 
@@ -458,15 +485,19 @@ vector particleFluidCoupling::addedMass
     const ::iceCoupling::CouplingParticle& p, const vector& fluidVelocity, label index
 )
 {
-    currentSlip_[index] = fluidVelocity - toVector(p.velocity);
-    const bool seenBefore =
-        index < label(previousTags_.size()) && previousTags_[index] == p.tag;
-    if (addedMassCoefficient_ == 0 || !seenBefore)
+    const vector slip = fluidVelocity - toVector(p.velocity);
+    if (addedMassCoefficient_ == 0)
+    {
+        return Zero;
+    }
+    currentSlip_[p.tag] = slip;
+    const auto previous = previousSlip_.find(p.tag);
+    if (previous == previousSlip_.end())
     {
         return Zero;
     }
     return addedMassCoefficient_*rhoAtParticle_[index]*wetFraction_[index]*volumeOf(p)
-          *(currentSlip_[index] - previousSlip_[index])/couplingTime_;
+          *(slip - previous->second)/couplingTime_;
 }
 
 

@@ -1,5 +1,4 @@
 #include "particleLocator.H"
-#include "parallelSum.H"
 #include "Pstream.H"
 
 namespace Foam
@@ -135,6 +134,18 @@ void particleLocator::addSample(label particle, label cell, scalar z, scalar sha
 }
 
 
+boundBox particleLocator::particleRegion(scalar openAbove) const
+{
+    boundBox region(localBounds_);
+    // The mesh's top is at the surface to 1e-6 m (checked by the solvers).
+    if (openAbove < GREAT && region.max().z() >= openAbove - 1e-6)
+    {
+        region.max().z() = GREAT;
+    }
+    return region;
+}
+
+
 void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>& particles)
 {
     const label nParticles = particles.size();
@@ -151,6 +162,7 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
     }
     centreCell_.setSize(nParticles, -1);
     labelList cellOfSample(nParticles*nSamples, -1);
+    exchange_ = particleRowExchange(particles);
 
     // One list for one reduction: the centre owner then the sample owners of each particle.
     std::vector<int> owner(nParticles*(nSamples + 1), nobody);
@@ -180,7 +192,7 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
             }
         }
     }
-    minOverRanks(owner);
+    exchange_.min(owner, nSamples + 1);
 
     samples_.clear();
     for (label i = 0; i < nParticles; ++i)

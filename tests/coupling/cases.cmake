@@ -62,6 +62,11 @@ add_test(NAME lightCloud_oneVsTwoRanks
   COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/compareTrajectories.py
           ${COUPLING_WORK}/lightCloud_np1 ${COUPLING_WORK}/lightCloud_np2)
 set_tests_properties(lightCloud_oneVsTwoRanks PROPERTIES FIXTURES_REQUIRED "cloud_np1;cloud_np2")
+# ... and each rank held only the particles near its half of the mesh (about
+# half of them, plus those whose spheres reach across the boundary).
+add_test(NAME lightCloud_localExchange
+  COMMAND ${PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/checkLocalExchange.py ${COUPLING_WORK}/lightCloud_np2/log.iceFoam)
+set_tests_properties(lightCloud_localExchange PROPERTIES FIXTURES_REQUIRED cloud_np2)
 
 # Floating ice at the water surface (waterLevel): the draft of a sphere.
 add_test(NAME floatingSphere_run

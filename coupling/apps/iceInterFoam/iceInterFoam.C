@@ -124,6 +124,7 @@ int main(int argc, char *argv[])
     particleOutput output(runTime, couplingProperties);
     vofOutput vofLog(runTime, surface);
 
+    particles = dem.gatherNear(coupling.particleRegion());
     coupling.updateFluidFraction(particles);
     coupling.updateExchange(particles, U);
     eps = coupling.alpha();
@@ -156,13 +157,13 @@ int main(int argc, char *argv[])
         coupling.setWaterHeight(height);
         coupling.updateForces(particles, U, gradpd);
         dem.setForces(particles, coupling.particleForces());
-        output.coupling(lmp.time(), coupling, particles);
+        output.coupling(lmp.time(), coupling, dem);
         vofLog.write(lmp.time(), alpha1, eps, waterVolume0, courant, coupling);
         checkWaterVolume(couplingProperties, surface.waterVolume(alpha1, eps), waterVolume0, runTime);
 
         // 3. LIGGGHTS crosses it; the next exchange starts from where both are.
         dem.advance(interval.demSteps());
-        particles = dem.gatherAll();
+        particles = dem.gatherNear(coupling.particleRegion());
         coupling.updateFluidFraction(particles);
         coupling.updateExchange(particles, U);
         if (bondedIce)
@@ -171,7 +172,7 @@ int main(int argc, char *argv[])
         }
         if (runTime.writeTime())
         {
-            output.particlesVtk(runTime, particles);
+            output.particlesVtk(runTime, dem);
             if (bondedIce)
             {
                 bondedIce->writeHistory(bondHistory);
