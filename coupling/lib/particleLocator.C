@@ -155,12 +155,32 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
     const int myRank = Pstream::myProcNo();
     const int nobody = Pstream::nProcs();
 
-    labelList previous(centreCell_);
-    if (previous.size() != nParticles)
+    // The cell each particle's centre was in at the last call, as the search's
+    // first guess: matched by tag, since a rank's list changes as particles
+    // come near its part of the mesh and leave it (both lists are sorted by tag).
+    labelList previous(nParticles, -1);
+    for (std::size_t i = 0, j = 0; i < particles.size() && j < centreTags_.size();)
     {
-        previous.setSize(nParticles, -1);
+        if (particles[i].tag < centreTags_[j])
+        {
+            ++i;
+        }
+        else if (centreTags_[j] < particles[i].tag)
+        {
+            ++j;
+        }
+        else
+        {
+            previous[i++] = centreCell_[j++];
+        }
     }
-    centreCell_.setSize(nParticles, -1);
+    centreCell_.setSize(nParticles);
+    centreCell_ = -1;
+    centreTags_.resize(nParticles);
+    for (label i = 0; i < nParticles; ++i)
+    {
+        centreTags_[i] = particles[i].tag;
+    }
     labelList cellOfSample(nParticles*nSamples, -1);
     exchange_ = particleRowExchange(particles);
 
