@@ -274,6 +274,7 @@ void DemCoupling::setForces
         }
     }
     forcesSet_ = true;
+    orderedTags_.clear();   // the next step looks the new forces up
 }
 
 
@@ -288,30 +289,44 @@ void DemCoupling::advance(long steps)
 
 void DemCoupling::callback(void* self, int64_t, int nlocal, int* tags, double**, double** fexternal)
 {
-    static_cast<const DemCoupling*>(self)->apply(nlocal, tags, fexternal);
+    static_cast<DemCoupling*>(self)->apply(nlocal, tags, fexternal);
 }
 
 
-void DemCoupling::apply(int nlocal, const int* tags, double** fexternal) const
+void DemCoupling::apply(int nlocal, const int* tags, double** fexternal)
 {
+    const bool sameOrder =
+        orderedTags_.size() == static_cast<std::size_t>(nlocal)
+     && std::equal(tags, tags + nlocal, orderedTags_.begin());
+    if (!sameOrder)
+    {
+        orderedTags_.assign(tags, tags + nlocal);
+        orderedForces_.resize(nlocal);
+        for (int i = 0; i < nlocal; ++i)
+        {
+            const auto force = forceOfTag_.find(tags[i]);
+            if (force != forceOfTag_.end())
+            {
+                orderedForces_[i] = force->second;
+            }
+            else if (!forcesSet_)
+            {
+                // No force yet (LIGGGHTS' set-up runs before the first exchange): none.
+                orderedForces_[i] = {0.0, 0.0, 0.0};
+            }
+            else
+            {
+                lmp_.engine().error->one(FLERR, ("the fluid force of atom " + std::to_string(tags[i])
+                    + " is not on this rank: it came from further than the ghost cut-off within one"
+                    " coupling interval; lower couplingInterval (constant/couplingProperties)").c_str());
+            }
+        }
+    }
     for (int i = 0; i < nlocal; ++i)
     {
-        const auto force = forceOfTag_.find(tags[i]);
-        if (force == forceOfTag_.end())
-        {
-            // No force yet (LIGGGHTS' set-up runs before the first exchange): none.
-            if (!forcesSet_)
-            {
-                fexternal[i][0] = fexternal[i][1] = fexternal[i][2] = 0.0;
-                continue;
-            }
-            lmp_.engine().error->one(FLERR, ("the fluid force of atom " + std::to_string(tags[i])
-                + " is not on this rank: it came from further than the ghost cut-off within one"
-                " coupling interval; lower couplingInterval (constant/couplingProperties)").c_str());
-        }
         for (int k = 0; k < 3; ++k)
         {
-            fexternal[i][k] = force->second[k];
+            fexternal[i][k] = orderedForces_[i][k];
         }
     }
 }
