@@ -23,6 +23,34 @@ namespace
 
 constexpr int fieldsPerParticle = 9;   // tag, x[3], v[3], diameter, mass
 
+//- Sends toRank[r] to rank r; returns what arrived, by sending rank, and how
+//  many values came from each.
+std::vector<double> allToAll
+(
+    const std::vector<std::vector<double>>& toRank, MPI_Comm comm, std::vector<int>& receiveCounts
+)
+{
+    const int ranks = static_cast<int>(toRank.size());
+    std::vector<int> sendCounts(ranks), sendOffsets(ranks, 0), receiveOffsets(ranks, 0);
+    receiveCounts.assign(ranks, 0);
+    std::vector<double> sent;
+    for (int r = 0; r < ranks; ++r)
+    {
+        sendOffsets[r] = static_cast<int>(sent.size());
+        sent.insert(sent.end(), toRank[r].begin(), toRank[r].end());
+        sendCounts[r] = static_cast<int>(toRank[r].size());
+    }
+    MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm);
+    for (int r = 1; r < ranks; ++r)
+    {
+        receiveOffsets[r] = receiveOffsets[r - 1] + receiveCounts[r - 1];
+    }
+    std::vector<double> received(receiveOffsets.back() + receiveCounts.back());
+    MPI_Alltoallv(sent.data(), sendCounts.data(), sendOffsets.data(), MPI_DOUBLE,
+                  received.data(), receiveCounts.data(), receiveOffsets.data(), MPI_DOUBLE, comm);
+    return received;
+}
+
 } // namespace
 
 
@@ -62,33 +90,24 @@ std::vector<CouplingParticle> DemCoupling::exchangeRows
     const std::vector<double>& rows, const std::vector<std::vector<int>>& rowsForRank
 ) const
 {
-    MPI_Comm comm = lmp_.communicator();
     const int ranks = static_cast<int>(rowsForRank.size());
-    std::vector<int> sendCounts(ranks), sendOffsets(ranks, 0), receiveCounts(ranks), receiveOffsets(ranks, 0);
-    std::vector<double> sent;
+    std::vector<std::vector<double>> toRank(ranks);
     for (int r = 0; r < ranks; ++r)
     {
-        sendOffsets[r] = static_cast<int>(sent.size());
         for (const int row : rowsForRank[r])
         {
-            sent.insert(sent.end(), &rows[fieldsPerParticle*row], &rows[fieldsPerParticle*(row + 1)]);
+            toRank[r].insert(toRank[r].end(), &rows[fieldsPerParticle*row], &rows[fieldsPerParticle*(row + 1)]);
         }
-        sendCounts[r] = static_cast<int>(sent.size()) - sendOffsets[r];
     }
-    MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm);
-    for (int r = 1; r < ranks; ++r)
-    {
-        receiveOffsets[r] = receiveOffsets[r - 1] + receiveCounts[r - 1];
-    }
-    std::vector<double> received(receiveOffsets.back() + receiveCounts.back());
-    MPI_Alltoallv(sent.data(), sendCounts.data(), sendOffsets.data(), MPI_DOUBLE,
-                  received.data(), receiveCounts.data(), receiveOffsets.data(), MPI_DOUBLE, comm);
+    std::vector<int> receiveCounts;
+    const std::vector<double> received(allToAll(toRank, lmp_.communicator(), receiveCounts));
 
     std::vector<CouplingParticle> particles;
     particles.reserve(received.size()/fieldsPerParticle);
+    std::size_t k = 0;
     for (int r = 0; r < ranks; ++r)
     {
-        for (int k = receiveOffsets[r]; k < receiveOffsets[r] + receiveCounts[r]; k += fieldsPerParticle)
+        for (const std::size_t end = k + receiveCounts[r]; k < end; k += fieldsPerParticle)
         {
             const double* row = &received[k];
             particles.push_back({static_cast<long>(row[0]), {row[1], row[2], row[3]},
@@ -226,22 +245,8 @@ void DemCoupling::setForces
             toRank[r].insert(toRank[r].end(), row, row + width);
         }
     }
-    std::vector<int> sendCounts(ranks), sendOffsets(ranks, 0), receiveCounts(ranks), receiveOffsets(ranks, 0);
-    std::vector<double> sent;
-    for (int r = 0; r < ranks; ++r)
-    {
-        sendOffsets[r] = static_cast<int>(sent.size());
-        sent.insert(sent.end(), toRank[r].begin(), toRank[r].end());
-        sendCounts[r] = static_cast<int>(toRank[r].size());
-    }
-    MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm);
-    for (int r = 1; r < ranks; ++r)
-    {
-        receiveOffsets[r] = receiveOffsets[r - 1] + receiveCounts[r - 1];
-    }
-    std::vector<double> received(receiveOffsets.back() + receiveCounts.back());
-    MPI_Alltoallv(sent.data(), sendCounts.data(), sendOffsets.data(), MPI_DOUBLE,
-                  received.data(), receiveCounts.data(), receiveOffsets.data(), MPI_DOUBLE, comm);
+    std::vector<int> receiveCounts;
+    const std::vector<double> received(allToAll(toRank, comm, receiveCounts));
 
     // The shares of the ranks holding each particle, summed in the order of those ranks.
     std::unordered_map<long, std::array<double, 3>> previous(std::move(forceOfTag_));
