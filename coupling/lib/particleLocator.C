@@ -14,6 +14,7 @@ particleLocator::particleLocator
     mesh_(mesh),
     model_(model),
     localBounds_(mesh.points(), false),
+    insideMargin_(insideMargins(mesh)),
     verticalSharing_(false)
 {
     const word sharing(couplingProperties.getOrDefault<word>("verticalSharing", "none"));
@@ -52,6 +53,34 @@ particleLocator::particleLocator
     // rank, since only ranks with particles nearby would ask for them later.
     mesh_.tetBasePtIs();
     mesh_.cellTree();
+    mesh_.cellPoints();
+    mesh_.pointCells();
+}
+
+
+scalarField particleLocator::insideMargins(const fvMesh& mesh)
+{
+    // A point farther inside every face plane of a cell than its faces' warp
+    // is inside the cell's tet decomposition, so the cheap face-plane test
+    // finds the cell the tet test would; a point nearer a face (on it, or by
+    // a warped face) is left to the tet test, so no cell assignment changes.
+    // The round-off allowance is relative to the cell's size.
+    scalarField margin(mesh.nCells(), 0);
+    const pointField& points = mesh.points();
+    forAll(margin, celli)
+    {
+        scalar warp = 0;
+        for (const label facei : mesh.cells()[celli])
+        {
+            const vector n = mesh.faceAreas()[facei]/mag(mesh.faceAreas()[facei]);
+            for (const label pointi : mesh.faces()[facei])
+            {
+                warp = max(warp, mag((points[pointi] - mesh.faceCentres()[facei]) & n));
+            }
+        }
+        margin[celli] = warp + 1e-6*cbrt(mesh.cellVolumes()[celli]);
+    }
+    return margin;
 }
 
 
@@ -67,16 +96,57 @@ label particleLocator::findCell(const point& p, label hint) const
 
 scalar particleLocator::clearance(const point& p, label cell) const
 {
+    // The mesh's accessors are virtual: taken once, not per face.
+    const labelList& owner = mesh_.faceOwner();
+    const vectorField& areas = mesh_.faceAreas();
+    const vectorField& centres = mesh_.faceCentres();
     scalar nearest = GREAT;
     for (const label facei : mesh_.cells()[cell])
     {
         // Face normals point out of their owner.
-        const vector outward =
-            (mesh_.faceOwner()[facei] == cell ? 1 : -1)*mesh_.faceAreas()[facei]
-           /mag(mesh_.faceAreas()[facei]);
-        nearest = min(nearest, (mesh_.faceCentres()[facei] - p) & outward);
+        const vector outward = (owner[facei] == cell ? 1 : -1)*areas[facei]/mag(areas[facei]);
+        nearest = min(nearest, (centres[facei] - p) & outward);
     }
     return nearest;
+}
+
+
+bool particleLocator::insideFacePlanes(const point& p, label cell) const
+{
+    // primitiveMesh::pointInCell's test (on or inside every face plane),
+    // leaving at the first face that says no.
+    const labelList& owner = mesh_.faceOwner();
+    const vectorField& areas = mesh_.faceAreas();
+    const vectorField& centres = mesh_.faceCentres();
+    for (const label facei : mesh_.cells()[cell])
+    {
+        const scalar outward = areas[facei] & (p - centres[facei]);
+        if ((owner[facei] == cell ? outward : -outward) > 0)
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+
+bool particleLocator::wellInside(const point& p, label cell) const
+{
+    // clearance(p, cell) > insideMargin_[cell], leaving at the first face
+    // that says no (most cells tried are not the point's).
+    const labelList& owner = mesh_.faceOwner();
+    const vectorField& areas = mesh_.faceAreas();
+    const vectorField& centres = mesh_.faceCentres();
+    for (const label facei : mesh_.cells()[cell])
+    {
+        const vector& area = areas[facei];
+        const scalar inward = (owner[facei] == cell ? 1 : -1)*((centres[facei] - p) & area);
+        if (inward <= insideMargin_[cell]*mag(area))
+        {
+            return false;
+        }
+    }
+    return true;
 }
 
 
@@ -84,15 +154,28 @@ label particleLocator::sampleCell(const point& p, label centreCell) const
 {
     if (centreCell >= 0)
     {
-        if (mesh_.pointInCell(p, centreCell, polyMesh::FACE_PLANES))
+        if (insideFacePlanes(p, centreCell))
         {
             return centreCell;
         }
         for (const label neighbour : mesh_.cellCells()[centreCell])
         {
-            if (mesh_.pointInCell(p, neighbour, polyMesh::FACE_PLANES))
+            if (insideFacePlanes(p, neighbour))
             {
                 return neighbour;
+            }
+        }
+        // Across an edge or a corner of the centre cell: a cell sharing one
+        // of its points, where the point is well inside it (insideMargins);
+        // nearer a face the full search decides, as it always did.
+        for (const label pointi : mesh_.cellPoints()[centreCell])
+        {
+            for (const label celli : mesh_.pointCells()[pointi])
+            {
+                if (celli != centreCell && wellInside(p, celli))
+                {
+                    return celli;
+                }
             }
         }
     }
@@ -194,14 +277,30 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
         {
             continue;
         }
-        const label cell = findCell(c, previous[i]);
+        // Most centres are still well inside last call's cell: the face
+        // planes decide it, without the tet test.
+        label cell = -1;
+        scalar centreClearance = -GREAT;
+        if (previous[i] >= 0)
+        {
+            centreClearance = clearance(c, previous[i]);
+            if (centreClearance > insideMargin_[previous[i]])
+            {
+                cell = previous[i];
+            }
+        }
+        if (cell < 0)
+        {
+            cell = findCell(c, previous[i]);
+            centreClearance = cell >= 0 ? clearance(c, cell) : -GREAT;
+        }
         if (cell >= 0)
         {
             centreCell_[i] = cell;
             owner[i*(nSamples + 1)] = myRank;
         }
         // Most particles lie wholly inside their cell: no sample search.
-        const bool inside = cell >= 0 && clearance(c, cell) >= 0.5*d;
+        const bool inside = cell >= 0 && centreClearance >= 0.5*d;
         for (label s = 0; s < nSamples; ++s)
         {
             const label sc = inside ? cell : sampleCell(c + d*offsets[s], cell);
