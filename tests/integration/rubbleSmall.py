@@ -23,7 +23,13 @@
    same settled heap closes at the target, the stage records the contacts'
    modulus (compacted.h5 and compaction.json), and the lid needs several times
    the soft contacts' pressure at the same gap (postProcessing/compaction.json:
-   overlaps between blocks when closed and after the hold).
+   overlaps between blocks when closed and after the hold);
+5. the same stiff compaction allowed half the lid pressure it needed to close
+   stops before the target with exit 3 (a run error: AppMain.C) and "out of reach", leaving its curve
+   (postProcessing/compaction.csv) and no compacted.h5; the settling-levels
+   study (cases/rubbleBeam/studies/settlingLevels.py) reads where the heap
+   jammed from its log: above the target porosity, above the allowed pressure,
+   the curve's last row.
 
 usage: rubbleSmall.py CASE WORKDIR APP"""
 import json
@@ -38,6 +44,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postProcessing"))
 import iceCases  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases", "rubbleBeam",
+                                "studies"))
+import settlingLevels  # noqa: E402
 
 case, work, app = sys.argv[1:]
 failures = []
@@ -207,4 +216,22 @@ check(ratio > 2,
       f"({hard['lid_pressure_when_closed_Pa']:.0f} against {soft['lid_pressure_when_closed_Pa']:.0f} Pa; mean overlap "
       f"{1e3 * hard['overlaps_when_closed']['mean_overlap_m']:.2f} against "
       f"{1e3 * soft['overlaps_when_closed']['mean_overlap_m']:.2f} mm)")
+
+# 5. Half the pressure the stiff contacts needed to close: the target is out of reach.
+jammed = iceCases.copy_case(stiff, os.path.join(work, "beamJammed"))
+shutil.copy(os.path.join(stiff, "DEM", "settled.h5"), os.path.join(jammed, "DEM", "settled.h5"))
+allowed = 0.5 * hard["lid_pressure_when_closed_Pa"]
+iceCases.set_entry(os.path.join(jammed, "constant", "rubbleProperties"), "compaction.maxPressure", allowed)
+with open(os.path.join(jammed, "log.compact"), "w") as log:
+    rc = subprocess.run(["mpirun", "--allow-run-as-root", "-np", "1", app, "-case", jammed, "-stage", "compact"],
+                        stdout=log, stderr=subprocess.STDOUT).returncode
+stop = settlingLevels.jam(jammed)
+curve = np.genfromtxt(os.path.join(jammed, "postProcessing", "compaction.csv"), delimiter=",", names=True)
+check(rc == 3 and "out of reach" in open(os.path.join(jammed, "log.compact")).read()
+      and not os.path.exists(os.path.join(jammed, "DEM", "compacted.h5")),
+      f"allowed {allowed:.0f} Pa, the compaction stops out of reach (exit {rc}) and saves no compacted.h5")
+check(stop is not None and stop[0] > target and stop[1] > allowed
+      and abs(stop[0] - curve["porosity"][-1]) < 1e-8 and abs(stop[1] / curve["lid_Pa"][-1] - 1) < 1e-8,
+      f"the settling-levels study reads the jam: {stop} (porosity, Pa) against the target {target} and the "
+      f"curve's last row ({curve['porosity'][-1]:.6f}, {curve['lid_Pa'][-1]:.1f} Pa)")
 sys.exit(1 if failures else 0)

@@ -12,7 +12,10 @@ checkpoint of its fluid).
 
 Per level: settling time, at rest, thickness, porosity, ice above water, the water's vertical force
 on the settled ice against its weight (cfd), wall time, wall time per simulated second and
-particle-steps/s of the settling; after compaction and bonding: porosity, freeze-bonds. The plot
+particle-steps/s of the settling; after compaction and bonding: porosity, the lid's pressure when
+the plates closed, freeze-bonds. The plot gives, beside the profiles, the lid's pressure against
+porosity as the plates close on each heap. A heap that jams before the compaction's target (rubbleDEM stops:
+"out of reach") is reported where it jammed and under what pressure, and is not bonded. The plot
 gives the ice's volume fraction against height for both settled layers. Writes
 runs/settlingLevels_<shape>.{csv,md,png}; --publish runs nothing and copies them into results/ with
 the README's table.
@@ -22,6 +25,7 @@ import argparse
 import concurrent.futures
 import json
 import os
+import re
 import shutil
 import sys
 
@@ -77,22 +81,67 @@ def execute(level, shape):
             iceCases.set_entry(os.path.join(folder, "constant", "rubbleProperties"), "settling.minTime", CFD_MIN_TIME)
 
     target = iceCases.prepared_run(run_dir(level, shape), prepare, settings=[shape])
-    if not iceCases.finished(target):
+    if done(target):
+        return target
+    # A settled heap of this folder's inputs is kept (rubbleDEM -stage compact checks its provenance):
+    # the cfd settling has no checkpoint of its fluid and is the expensive part.
+    if not (os.path.exists(os.path.join(target, "postProcessing", "settling.json"))
+            and os.path.exists(os.path.join(target, "DEM", "settled.h5"))):
         if level == "cfd":
             settle_cfd(target, shape)
         else:
             iceCases.run_app("rubbleDEM", target, 1, ["-stage", "settle", "-shape", shape], "log.settle")
-        for stage in ("compact", "bond"):
-            iceCases.run_app("rubbleDEM", target, 1, ["-stage", stage, "-shape", shape], f"log.{stage}")
+    try:
+        iceCases.run_app("rubbleDEM", target, 1, ["-stage", "compact", "-shape", shape], "log.compact")
+    except RuntimeError:
+        if jam(target) is None:
+            raise
+        print(f"{target}: the compaction's target is out of reach for this heap (log.compact): "
+              "reported as jammed, not bonded", flush=True)
+        return target
+    iceCases.run_app("rubbleDEM", target, 1, ["-stage", "bond", "-shape", shape], "log.bond")
     return target
+
+
+JAM = re.compile(r"compaction stopped at porosity (\S+) \(plates \S+ m apart\) with (\S+) Pa on the lid")
+
+
+def jam(target):
+    """Where the heap jammed before the compaction's target (porosity, lid pressure in Pa, from
+    rubbleDEM's message in log.compact), or None if its compaction did not stop that way."""
+    log = os.path.join(target, "log.compact")
+    match = JAM.search(open(log).read()) if os.path.exists(log) else None
+    return (float(match.group(1)), float(match.group(2))) if match else None
+
+
+def done(target):
+    """Compacted and bonded, or settled and jammed on the way to the compaction's target."""
+    return iceCases.finished(target) or (os.path.exists(os.path.join(target, "postProcessing", "settling.json"))
+                                         and jam(target) is not None)
 
 
 def settling(target):
     return json.load(open(os.path.join(target, "postProcessing", "settling.json")))
 
 
+def compaction_figures(target):
+    """The porosity and the lid's pressure when the plates closed on the target (or where the heap
+    jammed), the porosity after the hold, at which the freeze-bonds were made, and their number
+    ("" when the heap jammed and was not bonded)."""
+    if iceCases.finished(target):
+        b = iceCases.summary(target)
+        closed = json.load(open(os.path.join(target, "postProcessing", "compaction.json")))
+        return {"compaction": "reached", "closed_porosity": round(closed["porosity_when_closed"], 4),
+                "lid_pressure_kPa": round(closed["lid_pressure_when_closed_Pa"] / 1e3, 2),
+                "compacted_porosity": round(b["compaction"]["porosity"], 4),
+                "freeze_bonds": b["freeze_bonds"]}
+    porosity, pressure = jam(target)
+    return {"compaction": "jammed", "closed_porosity": round(porosity, 4),
+            "lid_pressure_kPa": round(pressure / 1e3, 2), "compacted_porosity": "", "freeze_bonds": ""}
+
+
 def row(level, target):
-    s, b = settling(target), iceCases.summary(target)
+    s = settling(target)
     fluid = s.get("fluidForceZ_N")
     return {"water": level, "settled_time_s": round(s["settled_time_s"], 2), "at_rest": s["at_rest"],
             "thickness_m": round(s["thickness_m"], 4), "porosity": round(s["porosity"], 4),
@@ -102,22 +151,26 @@ def row(level, target):
             "drag_N": round(s["dragZ_N"], 2) if fluid is not None else "",
             "particles": s["particles"], "steps": s["steps"], "wall_s": round(s["wall_s"], 1),
             "wall_per_simulated_s": round(s["wall_per_simulated_s"], 2),
-            "particle_steps_per_s": round(s["particle_steps_per_s"], -3),
-            "compacted_porosity": round(b["compaction"]["porosity"], 4), "freeze_bonds": b["freeze_bonds"]}
+            "particle_steps_per_s": round(s["particle_steps_per_s"], -3), **compaction_figures(target)}
 
 
 def table(rows):
     columns = list(rows[0])
     csv_text = "\n".join([",".join(columns)] + [",".join(str(r[c]) for c in columns) for r in rows]) + "\n"
     lines = ["| water | settled after [s] | thickness [m] | porosity | ice above water | water's force / weight "
-             "| settling wall [s] (per simulated s) | particle-steps/s | compacted porosity, freeze-bonds |",
-             "|---|" + "---|" * 8]
+             "| settling wall [s] (per simulated s) | particle-steps/s | plates closed: porosity, lid pressure "
+             "| bonded at porosity, freeze-bonds |",
+             "|---|" + "---|" * 9]
     for r in rows:
         ratio = "-" if r["fluid_force_over_weight"] == "" else f"{r['fluid_force_over_weight']:.4f}"
+        reached = r["compaction"] == "reached"
+        closed = (f"{r['closed_porosity']:.3f}, {r['lid_pressure_kPa']:.1f} kPa" if reached
+                  else f"jammed at {r['closed_porosity']:.3f} under {r['lid_pressure_kPa']:.0f} kPa")
+        bonded = f"{r['compacted_porosity']:.3f}, {r['freeze_bonds']}" if reached else "not bonded"
         lines.append(f"| {r['water']} | {r['settled_time_s']:.1f}{'' if r['at_rest'] else ' (NOT at rest)'} "
                      f"| {r['thickness_m']:.3f} | {r['porosity']:.3f} | {100 * r['ice_above_water']:.2f} % "
                      f"| {ratio} | {r['wall_s']:.0f} ({r['wall_per_simulated_s']:.1f}) "
-                     f"| {r['particle_steps_per_s']:.3g} | {r['compacted_porosity']:.3f}, {r['freeze_bonds']} |")
+                     f"| {r['particle_steps_per_s']:.3g} | {closed} | {bonded} |")
     return csv_text, "\n".join(lines) + "\n"
 
 
@@ -139,7 +192,7 @@ def plot(shape, path):
     import matplotlib.pyplot as plt
     import numpy as np
     bins = np.linspace(0.0, 1.25, 26)     # 5 cm: about a sphere diameter
-    fig, ax = plt.subplots(figsize=(5.5, 5))
+    fig, (ax, squeeze) = plt.subplots(1, 2, figsize=(11, 5))
     for colour, level in zip(("tab:blue", "tab:red"), LEVELS):
         target = run_dir(level, shape)
         ax.plot(ice_fraction_profile(target, bins), 0.5 * (bins[1:] + bins[:-1]), color=colour,
@@ -151,6 +204,22 @@ def plot(shape, path):
     ax.set_title(f"Settled rubble ({shape}) at both water levels")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+    for colour, level in zip(("tab:blue", "tab:red"), LEVELS):
+        path = os.path.join(run_dir(level, shape), "postProcessing", "compaction.csv")
+        if os.path.exists(path):
+            c = np.genfromtxt(path, delimiter=",", names=True)
+            squeeze.semilogy(c["porosity"], np.maximum(c["lid_Pa"], 1.0) / 1e3, color=colour, label=level)
+    props = os.path.join(CASE, "constant", "rubbleProperties")
+    squeeze.axvline(float(iceCases.get_entry(props, "compaction.targetPorosity")), color="k", ls="--", lw=1,
+                    label="target porosity")
+    squeeze.axhline(float(iceCases.get_entry(props, "compaction.maxPressure")) / 1e3, color="k", ls=":", lw=1,
+                    label="maxPressure")
+    squeeze.invert_xaxis()
+    squeeze.set_xlabel("porosity between the plates (closing: right to left)")
+    squeeze.set_ylabel("lid pressure (kPa)")
+    squeeze.set_title("Compaction at the ice's stiffness")
+    squeeze.grid(alpha=0.3, which="both")
+    squeeze.legend(fontsize=8)
     iceCases.save_figure(fig, path)
 
 
@@ -162,7 +231,7 @@ def main():
                         help="run nothing; copy the finished runs' table and plot into results/ and the README")
     args = parser.parse_args()
     if args.publish:
-        missing = [run_dir(level, args.shape) for level in LEVELS if not iceCases.finished(run_dir(level, args.shape))]
+        missing = [run_dir(level, args.shape) for level in LEVELS if not done(run_dir(level, args.shape))]
         if missing:
             sys.exit("settlingLevels.py --publish: not finished: " + ", ".join(missing))
     else:
