@@ -9,6 +9,11 @@ caseCommonSource="$(cd "$(dirname "${BASH_SOURCE[0]}")/../cases/common" && pwd)"
 # mpirun adds a banner about "1 process returned a non-zero exit code" that reads like a crash.
 export OMPI_MCA_orte_execute_quiet=1
 
+# Open MPI binds the ranks of every mpirun to cores from core 0 on, unaware of other jobs: two
+# 1-rank runs side by side (a study's -jobs 2, two keels) both ran on core 0, each at 0.44 of its
+# speed alone (studies/sceneSpeed). Unbound, the kernel spreads them over the cores.
+export OMPI_MCA_hwloc_base_binding_policy=${OMPI_MCA_hwloc_base_binding_policy:-none}
+
 # copy_case_common COPY: cases/common copied to COPY/../common (COPY is the
 # copied case folder, which must exist); nothing to do when that is cases/common.
 copy_case_common() {

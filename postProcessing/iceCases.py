@@ -23,6 +23,11 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.join(os.path.dirname(TOP), "shared")
 BUILD = os.path.join(TOP, "build")
 
+# Every mpirun these scripts start, directly or through a case's Allrun, inherits this: Open MPI
+# binds each mpirun's ranks to cores from core 0 on, so two 1-rank jobs side by side shared core 0
+# (each at 0.44 of its speed alone; studies/sceneSpeed). Unbound, the kernel spreads them.
+os.environ.setdefault("OMPI_MCA_hwloc_base_binding_policy", "none")
+
 
 _COMMENT_OR_STRING = re.compile(r'//[^\n]*|/\*.*?\*/|"(?:[^"\\\n]|\\.)*"', re.S)
 
