@@ -111,37 +111,19 @@ scalar particleLocator::clearance(const point& p, label cell) const
 }
 
 
-bool particleLocator::insideFacePlanes(const point& p, label cell) const
+bool particleLocator::insideBy(const point& p, label cell, scalar margin) const
 {
-    // primitiveMesh::pointInCell's test (on or inside every face plane),
-    // leaving at the first face that says no.
-    const labelList& owner = mesh_.faceOwner();
-    const vectorField& areas = mesh_.faceAreas();
-    const vectorField& centres = mesh_.faceCentres();
-    for (const label facei : mesh_.cells()[cell])
-    {
-        const scalar outward = areas[facei] & (p - centres[facei]);
-        if ((owner[facei] == cell ? outward : -outward) > 0)
-        {
-            return false;
-        }
-    }
-    return true;
-}
-
-
-bool particleLocator::wellInside(const point& p, label cell) const
-{
-    // clearance(p, cell) > insideMargin_[cell], leaving at the first face
-    // that says no (most cells tried are not the point's).
+    // Leaves at the first face that says no (most cells tried are not the
+    // point's). With margin 0 this is primitiveMesh::pointInCell's test to the
+    // bit: (centre - p) & area is -(area & (p - centre)) exactly.
     const labelList& owner = mesh_.faceOwner();
     const vectorField& areas = mesh_.faceAreas();
     const vectorField& centres = mesh_.faceCentres();
     for (const label facei : mesh_.cells()[cell])
     {
         const vector& area = areas[facei];
-        const scalar inward = (owner[facei] == cell ? 1 : -1)*((centres[facei] - p) & area);
-        if (inward <= insideMargin_[cell]*mag(area))
+        const scalar inward = (centres[facei] - p) & area;
+        if ((owner[facei] == cell ? inward : -inward) < (margin > 0 ? margin*mag(area) : 0))
         {
             return false;
         }
@@ -154,13 +136,13 @@ label particleLocator::sampleCell(const point& p, label centreCell) const
 {
     if (centreCell >= 0)
     {
-        if (insideFacePlanes(p, centreCell))
+        if (insideBy(p, centreCell, 0))
         {
             return centreCell;
         }
         for (const label neighbour : mesh_.cellCells()[centreCell])
         {
-            if (insideFacePlanes(p, neighbour))
+            if (insideBy(p, neighbour, 0))
             {
                 return neighbour;
             }
@@ -172,7 +154,7 @@ label particleLocator::sampleCell(const point& p, label centreCell) const
         {
             for (const label celli : mesh_.pointCells()[pointi])
             {
-                if (celli != centreCell && wellInside(p, celli))
+                if (celli != centreCell && insideBy(p, celli, insideMargin_[celli]))
                 {
                     return celli;
                 }
