@@ -13,10 +13,10 @@ checkpoint of its fluid).
 Per level: settling time, at rest, thickness, porosity, ice above water, the water's vertical force
 on the settled ice against its weight (cfd), wall time, wall time per simulated second and
 particle-steps/s of the settling; after compaction and bonding: porosity, the lid's pressure when
-the plates closed, freeze-bonds. The plot gives, beside the profiles, the lid's pressure against
-porosity as the plates close on each heap. A heap that jams before the compaction's target (rubbleDEM stops:
+the plates closed, freeze-bonds. A heap that jams before the compaction's target (rubbleDEM stops:
 "out of reach") is reported where it jammed and under what pressure, and is not bonded. The plot
-gives the ice's volume fraction against height for both settled layers. Writes
+gives the ice's volume fraction against height for both settled layers and the lid's pressure
+against porosity as the plates close on each heap. Writes
 runs/settlingLevels_<shape>.{csv,md,png}; --publish runs nothing and copies them into results/ with
 the README's table.
 
@@ -85,8 +85,7 @@ def execute(level, shape):
         return target
     # A settled heap of this folder's inputs is kept (rubbleDEM -stage compact checks its provenance):
     # the cfd settling has no checkpoint of its fluid and is the expensive part.
-    if not (os.path.exists(os.path.join(target, "postProcessing", "settling.json"))
-            and os.path.exists(os.path.join(target, "DEM", "settled.h5"))):
+    if not settled(target):
         if level == "cfd":
             settle_cfd(target, shape)
         else:
@@ -114,10 +113,15 @@ def jam(target):
     return (float(match.group(1)), float(match.group(2))) if match else None
 
 
+def settled(target):
+    """Whether the run folder holds its settled heap (its summary and DEM/settled.h5)."""
+    return (os.path.exists(os.path.join(target, "postProcessing", "settling.json"))
+            and os.path.exists(os.path.join(target, "DEM", "settled.h5")))
+
+
 def done(target):
     """Compacted and bonded, or settled and jammed on the way to the compaction's target."""
-    return iceCases.finished(target) or (os.path.exists(os.path.join(target, "postProcessing", "settling.json"))
-                                         and jam(target) is not None)
+    return iceCases.finished(target) or (settled(target) and jam(target) is not None)
 
 
 def settling(target):
@@ -205,9 +209,9 @@ def plot(shape, path):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     for colour, level in zip(("tab:blue", "tab:red"), LEVELS):
-        path = os.path.join(run_dir(level, shape), "postProcessing", "compaction.csv")
-        if os.path.exists(path):
-            c = np.genfromtxt(path, delimiter=",", names=True)
+        curve = os.path.join(run_dir(level, shape), "postProcessing", "compaction.csv")
+        if os.path.exists(curve):
+            c = np.genfromtxt(curve, delimiter=",", names=True)
             squeeze.semilogy(c["porosity"], np.maximum(c["lid_Pa"], 1.0) / 1e3, color=colour, label=level)
     props = os.path.join(CASE, "constant", "rubbleProperties")
     squeeze.axvline(float(iceCases.get_entry(props, "compaction.targetPorosity")), color="k", ls="--", lw=1,
