@@ -219,7 +219,7 @@ def plot(shape, path):
     squeeze.axhline(float(iceCases.get_entry(props, "compaction.maxPressure")) / 1e3, color="k", ls=":", lw=1,
                     label="maxPressure")
     squeeze.invert_xaxis()
-    squeeze.set_xlabel("porosity between the plates (closing: right to left)")
+    squeeze.set_xlabel("porosity between the plates (closing: left to right)")
     squeeze.set_ylabel("lid pressure (kPa)")
     squeeze.set_title("Compaction at the ice's stiffness")
     squeeze.grid(alpha=0.3, which="both")
