@@ -627,9 +627,12 @@ def broken_shares(counts, population):
 
 
 def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_half_width,
-            interface_tolerance, rules=None, curve_columns=None):
+            interface_tolerance, rules=None, curve_columns=None, until=None):
     record = read_breakage(breakage)
     curve = read_curve(curve_path, curve_columns)
+    if until is not None:
+        record = {name: values[record["time"] <= until] for name, values in record.items()}
+        curve = tuple(column[curve[0] <= until] for column in curve)
     geometry = read_geometry(geometry_path) if geometry_path else None
     regions = assign_regions(record, geometry, centre_half_width, interface_tolerance)
     masks = region_masks(regions)
@@ -662,6 +665,7 @@ def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_
         "curve_file": os.path.abspath(curve_path),
         "geometry_file": os.path.abspath(geometry_path) if geometry_path else None,
         "centre_half_width_m": centre_half_width, "interface_tolerance_m": interface_tolerance,
+        "until_s": until,
         "point_data_codes": {"mode": {str(c): n for c, n in MODES.items()},
                              "family": {str(c): n for c, n in FAMILIES.items()},
                              "layer": dict({"-1": "outside"}, **{str(k): n for k, n in
@@ -709,6 +713,9 @@ def main(argv=None):
                         help="the curve's column names if not time, travel, force")
     parser.add_argument("--geometry", help="default CASE/postProcessing/geometry.json if present")
     parser.add_argument("--out", help="default CASE/postProcessing/failureAnalysis")
+    parser.add_argument("--until", type=float, metavar="T",
+                        help="leave out the breaks and curve rows after time T [s] (a run stopped by "
+                             "a blow-up: the breaks of the sample it stopped in are the blow-up's)")
     parser.add_argument("--centre-half-width", type=float, default=0.25,
                         help="centre band |x - loadX| <= this [m] (default 0.25)")
     parser.add_argument("--interface-tolerance", type=float, default=0.05,
@@ -725,6 +732,8 @@ def main(argv=None):
                             ("--interface-tolerance", args.interface_tolerance)):
             if not (math.isfinite(value) and value > 0):
                 raise InputError("command line", name, "must be a positive length [m]")
+        if args.until is not None and not (math.isfinite(args.until) and args.until > 0):
+            raise InputError("command line", "--until", "must be a positive time [s]")
         columns = args.columns.split(",") if args.columns else None
         if columns is not None and (len(columns) != 3 or not all(columns)):
             raise InputError("command line", "--columns", "needs three column names "
@@ -736,7 +745,7 @@ def main(argv=None):
                           in_case(args.breakage, "breakage.h5"),
                           in_case(args.curve, "platenForce.csv"), geometry,
                           parse_times(args.at) if args.at else [], args.centre_half_width,
-                          args.interface_tolerance, curve_columns=columns)
+                          args.interface_tolerance, curve_columns=columns, until=args.until)
     except InputError as error:
         sys.exit("failureAnalysis.py: %s" % error)
     counts = summary["counts"]

@@ -45,6 +45,9 @@ def main():
         check(ridgeMatrix.stopped_after_failure(before) is None, "stopped at 94 % of its peak: not a result")
         check(ridgeMatrix.stopped_after_failure(finished) is None, "a finished run is no stopped run")
         check(ridgeMatrix.stopped_after_failure(killed) is None, "a run without a reason (killed) is no stopped run")
+        check(abs(ridgeMatrix.counted_until(after) - 0.3) < 1e-12,
+              "a stopped run's breaks are counted up to the sample before the one it stopped in (0.3 s)")
+        check(ridgeMatrix.counted_until(finished) is None, "a finished run's breaks are all counted")
     finish()
 
 

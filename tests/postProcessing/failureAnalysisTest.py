@@ -171,6 +171,24 @@ class CountsTest(Folder):
         self.assertAlmostEqual(summary["freeze_bonds_broken_in_tension_fraction"], 1 / 3)
         self.assertEqual(summary["bonds_in_case"], {})  # the case has no summary.json
 
+    def test_until_leaves_out_later_breaks_and_samples(self):
+        # A run stopped by a blow-up: the breaks after 1.0 s (freeze shear at 1.2 s, ice bending at
+        # 1.5 s, ice twist at 1.8 s) are the blow-up's and are not counted.
+        case = syn.make_case(os.path.join(self.dir, "case"), known_events(), syn.RIDGE)
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(run_tool(case, "--out", out, "--until", "1.0").returncode, 0)
+        summary = load_json(os.path.join(out, "summary.json"))
+        self.assertEqual(summary["until_s"], 1.0)
+        self.assertEqual(summary["counts"]["total"], 5)
+        self.assertEqual(summary["counts"]["mode"], {"tension": 4, "shear": 1, "twist": 0, "bending": 0})
+        with open(os.path.join(out, "counts.csv")) as f:
+            times = [float(line.split(",")[0]) for line in f.read().splitlines()[1:]]
+        self.assertLessEqual(max(times), 1.0)
+        refused = run_tool(case, "--until", "-1", "--out", os.path.join(self.dir, "o2"))
+        self.assertNotEqual(refused.returncode, 0)
+        self.assertIn("--until", refused.stderr)
+        self.assertIn("positive time", refused.stderr)
+
     def test_shares_of_the_bonds_the_case_had(self):
         case = syn.make_case(os.path.join(self.dir, "case"), known_events())
         with open(os.path.join(case, "postProcessing", "summary.json"), "w") as f:

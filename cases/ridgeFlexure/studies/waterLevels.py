@@ -27,7 +27,6 @@ import argparse
 import concurrent.futures
 import json
 import os
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -66,9 +65,7 @@ def execute_resolved(run, resolution, level):
         cfdRun.mesh(target)
         iceCases.run_app(os.path.join(iceCases.BUILD, "coupling", app), target, 1, [], "log." + app)
     if not os.path.exists(os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")):
-        subprocess.run([sys.executable, os.path.join(iceCases.TOP, "postProcessing", "failureAnalysis.py"), target],
-                       check=True, stdout=open(os.path.join(target, "log.failureAnalysis"), "w"),
-                       stderr=subprocess.STDOUT)
+        ridgeMatrix.analyse_failure(target)
     return target
 
 
