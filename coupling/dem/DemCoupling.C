@@ -23,30 +23,45 @@ namespace
 
 constexpr int fieldsPerParticle = 9;   // tag, x[3], v[3], diameter, mass
 
-//- Sends toRank[r] to rank r; returns what arrived, by sending rank, and how
-//  many values came from each.
-std::vector<double> allToAll
-(
-    const std::vector<std::vector<double>>& toRank, MPI_Comm comm, std::vector<int>& receiveCounts
-)
+//- What one rank sends: the values for rank 0, then for rank 1, ..., and how
+//  many values go to each.
+struct RankOrderedValues
 {
-    const int ranks = static_cast<int>(toRank.size());
-    std::vector<int> sendCounts(ranks), sendOffsets(ranks, 0), receiveOffsets(ranks, 0);
-    receiveCounts.assign(ranks, 0);
-    std::vector<double> sent;
-    for (int r = 0; r < ranks; ++r)
+    std::vector<double> values;
+    std::vector<int> counts;
+};
+
+
+RankOrderedValues inRankOrder(const std::vector<std::vector<double>>& toRank)
+{
+    RankOrderedValues out;
+    for (const std::vector<double>& part : toRank)
     {
-        sendOffsets[r] = static_cast<int>(sent.size());
-        sent.insert(sent.end(), toRank[r].begin(), toRank[r].end());
-        sendCounts[r] = static_cast<int>(toRank[r].size());
+        out.values.insert(out.values.end(), part.begin(), part.end());
+        out.counts.push_back(static_cast<int>(part.size()));
     }
-    MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm);
+    return out;
+}
+
+
+//- Sends each rank its part of `sent`; returns what arrived, by sending rank,
+//  and how many values came from each.
+std::vector<double> allToAll(const RankOrderedValues& sent, MPI_Comm comm, std::vector<int>& receiveCounts)
+{
+    const int ranks = static_cast<int>(sent.counts.size());
+    std::vector<int> sendOffsets(ranks, 0), receiveOffsets(ranks, 0);
+    for (int r = 1; r < ranks; ++r)
+    {
+        sendOffsets[r] = sendOffsets[r - 1] + sent.counts[r - 1];
+    }
+    receiveCounts.assign(ranks, 0);
+    MPI_Alltoall(sent.counts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, comm);
     for (int r = 1; r < ranks; ++r)
     {
         receiveOffsets[r] = receiveOffsets[r - 1] + receiveCounts[r - 1];
     }
     std::vector<double> received(receiveOffsets.back() + receiveCounts.back());
-    MPI_Alltoallv(sent.data(), sendCounts.data(), sendOffsets.data(), MPI_DOUBLE,
+    MPI_Alltoallv(sent.values.data(), sent.counts.data(), sendOffsets.data(), MPI_DOUBLE,
                   received.data(), receiveCounts.data(), receiveOffsets.data(), MPI_DOUBLE, comm);
     return received;
 }
@@ -91,16 +106,17 @@ std::vector<CouplingParticle> DemCoupling::exchangeRows
 ) const
 {
     const int ranks = static_cast<int>(rowsForRank.size());
-    std::vector<std::vector<double>> toRank(ranks);
+    RankOrderedValues sent;
     for (int r = 0; r < ranks; ++r)
     {
         for (const int row : rowsForRank[r])
         {
-            toRank[r].insert(toRank[r].end(), &rows[fieldsPerParticle*row], &rows[fieldsPerParticle*(row + 1)]);
+            sent.values.insert(sent.values.end(), &rows[fieldsPerParticle*row], &rows[fieldsPerParticle*(row + 1)]);
         }
+        sent.counts.push_back(static_cast<int>(fieldsPerParticle*rowsForRank[r].size()));
     }
     std::vector<int> receiveCounts;
-    const std::vector<double> received(allToAll(toRank, lmp_.communicator(), receiveCounts));
+    const std::vector<double> received(allToAll(sent, lmp_.communicator(), receiveCounts));
 
     std::vector<CouplingParticle> particles;
     particles.reserve(received.size()/fieldsPerParticle);
@@ -246,7 +262,7 @@ void DemCoupling::setForces
         }
     }
     std::vector<int> receiveCounts;
-    const std::vector<double> received(allToAll(toRank, comm, receiveCounts));
+    const std::vector<double> received(allToAll(inRankOrder(toRank), comm, receiveCounts));
 
     // The shares of the ranks holding each particle, summed in the order of those ranks.
     std::unordered_map<long, std::array<double, 3>> previous(std::move(forceOfTag_));

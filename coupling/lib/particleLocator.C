@@ -274,7 +274,10 @@ void particleLocator::locate(const std::vector<::iceCoupling::CouplingParticle>&
         if (cell < 0)
         {
             cell = findCell(c, previous[i]);
-            centreClearance = cell >= 0 ? clearance(c, cell) : -GREAT;
+            if (cell != previous[i])   // the same cell's clearance is known
+            {
+                centreClearance = cell >= 0 ? clearance(c, cell) : -GREAT;
+            }
         }
         if (cell >= 0)
         {
