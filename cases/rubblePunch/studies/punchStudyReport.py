@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""The report of a punch study here (supportsPlaten, bondSets): the platen force, its buoyancy
+share and the rest (the rubble's) against travel for each finished point
+(STUDY_FOLDER/runs/<point>/.../runs/cuboid), drawn by the case's own plotPunch.plot_forces into
+STUDY_FOLDER/results/forces.png, and the study's README table (between `<!-- study table -->`
+and `<!-- end study table -->`) generated from STUDY_FOLDER/results/table.csv, which
+studies/runStudy.py writes.
+
+usage: punchStudyReport.py STUDY_FOLDER"""
+import csv
+import glob
+import json
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postProcessing"))
+import iceCases  # noqa: E402
+import plotPunch  # noqa: E402
+
+# figure of the study dictionaries here -> (column heading, scale, decimals)
+COLUMNS = {
+    "peakForce": ("largest force [N]", 1, 0),
+    "travelAtPeak": ("at travel [mm]", 1e3, 1),
+    "buoyancyAtPeak": ("buoyancy share there [N]", 1, 0),
+    "rubbleSharePeak": ("force less buoyancy, largest [N]", 1, 0),
+    "brokenBonds": ("broken bonds at 100 mm", 1, 0),
+    "brokenBeforePeak": ("broken before the peak", 1, 0),
+    "brokenInShear": ("broken in shear", 1, 0),
+    "tensionShare": ("broken in tension [%]", 100, 0),
+    "firstFailureTravel": ("first freeze-bond failure: travel [mm]", 1e3, 1),
+    "firstFailureForce": ("force there [N]", 1, 0),
+    "firstFailureFromLoadLine": ("from the load line [m]", 1, 2),
+    "firstFailureHeight": ("height in keel", 1, 2),
+    "bottomCentreTensionShare": ("bottom-centre tension, first 10", 1, 1),
+}
+
+
+def finished_runs(folder):
+    """{point: its punch run folder} of the points whose run finished."""
+    summaries = sorted(glob.glob(os.path.join(folder, "runs", "*", "mirror", "cases", "rubblePunch", "runs", "cuboid",
+                                              "postProcessing", "summary.json")))
+    return {os.path.relpath(s, os.path.join(folder, "runs")).split(os.sep)[0]: os.path.dirname(os.path.dirname(s))
+            for s in summaries if json.load(open(s)).get("complete")}
+
+
+def table_markdown(rows, knobs):
+    """The README table of the study's rows: its knobs, then each figure it has, in COLUMNS' order."""
+    figures = [name for name in COLUMNS if name in rows[0]]
+    lines = ["| " + " | ".join(knobs + ["status"] + [COLUMNS[f][0] for f in figures]) + " |",
+             "|" + "---|" * (len(knobs) + 1 + len(figures))]
+    for row in rows:
+        cells = [row[k] for k in knobs] + [row["status"]]
+        for name in figures:
+            _, scale, decimals = COLUMNS[name]
+            value = float(row[name]) if row[name] not in ("", None) else math.nan
+            cells.append("-" if math.isnan(value) else f"{value * scale:.{decimals}f}")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def main(folder):
+    runs = finished_runs(folder)
+    if not runs:
+        sys.exit(f"punchStudyReport.py: no finished point in {folder}/runs")
+    out = os.path.join(folder, "results", "forces.png")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    plotPunch.plot_forces(runs, out)
+    print("punchStudyReport.py:", out)
+
+    source = os.path.join(folder, "results", "table.csv")
+    if not os.path.isfile(source):
+        sys.exit(f"punchStudyReport.py: {source} missing (studies/runStudy.py writes it)")
+    with open(source, newline="") as f:
+        rows = list(csv.DictReader(f))
+    header = list(rows[0])
+    knobs = header[1:header.index("status")]
+    study = os.path.basename(os.path.abspath(folder))
+    iceCases.write_readme_table(os.path.join(folder, "README.md"), "study table",
+                                f"cases/rubblePunch/studies/punchStudyReport.py cases/rubblePunch/studies/{study}",
+                                "results/table.csv", table_markdown(rows, knobs))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2 or not os.path.isfile(os.path.join(sys.argv[1], "studyDict")):
+        sys.exit("usage: punchStudyReport.py STUDY_FOLDER (a folder with a studyDict, e.g. supportsPlaten)")
+    main(sys.argv[1])
