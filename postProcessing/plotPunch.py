@@ -157,7 +157,10 @@ def plot_forces(runs, out):
     ax.set_xlabel("platen travel (mm)")
     ax.set_ylabel("force (kN)")
     ax.set_title("Rubble punch: platen force and its buoyancy share")
-    ax.legend(fontsize=8)
+    if len(runs) > 2:   # a study's points: a legend that long would hide the curves' peaks
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    else:
+        ax.legend(fontsize=8)
     save_atomically(fig, out)
     plt.close(fig)
 

@@ -24,6 +24,7 @@ COLUMNS = {
     "peakForce": ("largest force [N]", 1, 0),
     "travelAtPeak": ("at travel [mm]", 1e3, 1),
     "buoyancyAtPeak": ("buoyancy share there [N]", 1, 0),
+    "supportReactionAtPeak": ("support reaction there [N]", 1, 0),
     "rubbleSharePeak": ("force less buoyancy, largest [N]", 1, 0),
     "brokenBonds": ("broken bonds at 100 mm", 1, 0),
     "brokenBeforePeak": ("broken before the peak", 1, 0),
