@@ -633,6 +633,9 @@ def analyse(case, out, breakage, curve_path, geometry_path, extra_times, centre_
     if until is not None:
         record = {name: values[record["time"] <= until] for name, values in record.items()}
         curve = tuple(column[curve[0] <= until] for column in curve)
+        if len(curve[0]) < 2:
+            raise InputError(curve_path, "--until", "%g s leaves %d curve rows; needs at least two"
+                             % (until, len(curve[0])))
     geometry = read_geometry(geometry_path) if geometry_path else None
     regions = assign_regions(record, geometry, centre_half_width, interface_tolerance)
     masks = region_masks(regions)

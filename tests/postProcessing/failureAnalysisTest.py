@@ -188,6 +188,9 @@ class CountsTest(Folder):
         self.assertNotEqual(refused.returncode, 0)
         self.assertIn("--until", refused.stderr)
         self.assertIn("positive time", refused.stderr)
+        early = run_tool(case, "--until", "1e-9", "--out", os.path.join(self.dir, "o3"))
+        self.assertNotEqual(early.returncode, 0)
+        self.assertIn("needs at least two", early.stderr)
 
     def test_shares_of_the_bonds_the_case_had(self):
         case = syn.make_case(os.path.join(self.dir, "case"), known_events())
