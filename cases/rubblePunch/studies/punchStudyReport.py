@@ -1,12 +1,14 @@
 #!/usr/bin/python3
-"""The report of a punch study here (supportsPlaten, bondSets): the platen force, its buoyancy
-share and the rest (the rubble's) against travel for each finished point
-(STUDY_FOLDER/runs/<point>/.../runs/cuboid), drawn by the case's own plotPunch.plot_forces into
+"""The report of a punch study here (supportsPlaten, bondSets, supportsEmpirical): the platen
+force, its buoyancy share and the rest (the rubble's) against travel for each finished point
+(STUDY_FOLDER/runs/<point>/.../runs/<keel>), drawn by the case's own plotPunch.plot_forces into
 STUDY_FOLDER/results/forces.png, and the study's README table (between `<!-- study table -->`
 and `<!-- end study table -->`) generated from STUDY_FOLDER/results/table.csv, which
 studies/runStudy.py writes.
 
-usage: punchStudyReport.py STUDY_FOLDER"""
+usage: punchStudyReport.py STUDY_FOLDER [NAME=RUN_FOLDER ...]
+  NAME=RUN_FOLDER  a finished punch outside the study drawn beside its points, e.g. the case's
+                   published clamped punch: clamped=cases/rubblePunch/runs/empirical"""
 import csv
 import glob
 import json
@@ -39,8 +41,8 @@ COLUMNS = {
 
 
 def finished_runs(folder):
-    """{point: its punch run folder} of the points whose run finished."""
-    summaries = sorted(glob.glob(os.path.join(folder, "runs", "*", "mirror", "cases", "rubblePunch", "runs", "cuboid",
+    """{point: its punch run folder} of the points whose run finished (one keel's punch per point)."""
+    summaries = sorted(glob.glob(os.path.join(folder, "runs", "*", "mirror", "cases", "rubblePunch", "runs", "*",
                                               "postProcessing", "summary.json")))
     return {os.path.relpath(s, os.path.join(folder, "runs")).split(os.sep)[0]: os.path.dirname(os.path.dirname(s))
             for s in summaries if json.load(open(s)).get("complete")}
@@ -61,10 +63,16 @@ def table_markdown(rows, knobs):
     return "\n".join(lines)
 
 
-def main(folder):
+def main(folder, beside):
     runs = finished_runs(folder)
     if not runs:
         sys.exit(f"punchStudyReport.py: no finished point in {folder}/runs")
+    for pair in beside:
+        name, _, run = pair.partition("=")
+        summary = os.path.join(run, "postProcessing", "summary.json")
+        if not name or not os.path.isfile(summary) or not json.load(open(summary)).get("complete"):
+            sys.exit(f"punchStudyReport.py: '{pair}': needs NAME=RUN_FOLDER of a finished punch ({summary})")
+        runs[name] = run
     out = os.path.join(folder, "results", "forces.png")
     os.makedirs(os.path.dirname(out), exist_ok=True)
     plotPunch.plot_forces(runs, out)
@@ -79,11 +87,13 @@ def main(folder):
     knobs = header[1:header.index("status")]
     study = os.path.basename(os.path.abspath(folder))
     iceCases.write_readme_table(os.path.join(folder, "README.md"), "study table",
-                                f"cases/rubblePunch/studies/punchStudyReport.py cases/rubblePunch/studies/{study}",
+                                " ".join([f"cases/rubblePunch/studies/punchStudyReport.py cases/rubblePunch/studies/{study}"]
+                                         + beside),
                                 "results/table.csv", table_markdown(rows, knobs))
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2 or not os.path.isfile(os.path.join(sys.argv[1], "studyDict")):
-        sys.exit("usage: punchStudyReport.py STUDY_FOLDER (a folder with a studyDict, e.g. supportsPlaten)")
-    main(sys.argv[1])
+    if len(sys.argv) < 2 or not os.path.isfile(os.path.join(sys.argv[1], "studyDict")):
+        sys.exit("usage: punchStudyReport.py STUDY_FOLDER [NAME=RUN_FOLDER ...] (STUDY_FOLDER holds a "
+                 "studyDict, e.g. supportsPlaten)")
+    main(sys.argv[1], sys.argv[2:])
