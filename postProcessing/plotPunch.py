@@ -145,7 +145,8 @@ def merge_summary(table, rows_text, out):
 
 def plot_forces(runs, out):
     fig, ax = plt.subplots(figsize=(8, 5))
-    for colour, (name, run) in zip(("tab:blue", "tab:orange", "tab:green", "tab:red"), runs.items()):
+    for k, (name, run) in enumerate(runs.items()):
+        colour = f"C{k}"   # tab:blue, orange, green, red, ...: every run drawn, not the first four
         c = columns(os.path.join(run, "postProcessing", "platenForce.csv"))
         mm = c["travel"] * 1e3
         ax.plot(mm, c["force"] * 1e-3, color=colour, lw=1.5, label=f"{name}: total platen force")
