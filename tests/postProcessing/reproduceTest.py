@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""bin/reproduce on a project of two tiny cases: entries run by two bin/reproduce processes side by
-side are reported together, with each run's wall time and exit status, by one -dry over both; a
-figure outside its tolerance is STALE and makes the exit status 1; -dry for an entry never run is a
-failure, not a fresh figure."""
+"""bin/reproduce on a project of tiny cases: entries run by separate bin/reproduce processes side by
+side are reported together, with each run's wall time and exit status, by one -dry over all (long
+entries included, which a plain call skips); a figure outside its tolerance is STALE and makes the
+exit status 1; -dry for an entry never run is a failure, not a fresh figure."""
 import csv
 import json
 import os
@@ -39,7 +39,7 @@ class ReproduceTest(unittest.TestCase):
         shutil.copy2(os.path.join(TOP, "bin", "reproduce"), os.path.join(self.top, "bin"))
         shutil.copy2(os.path.join(TOP, "postProcessing", "caseMirror.py"), os.path.join(self.top, "postProcessing"))
         entries = {"fresh": entry("caseA", 1, 100.0, 0, 100.0, 1e-6),
-                   "stale": entry("caseB", 1, 103.0, 0, 100.0, 0.02),
+                   "stale": dict(entry("caseB", 1, 103.0, 0, 100.0, 0.02), long=True),
                    "failed": entry("caseC", 0, 100.0, 3, 100.0, 1e-6),
                    "neverRun": entry("caseD", 0, 100.0, 0, 100.0, 1e-6)}
         for e in entries.values():
@@ -66,12 +66,12 @@ class ReproduceTest(unittest.TestCase):
             return {r["entry"]: r for r in csv.DictReader(f)}
 
     def test_side_by_side_then_one_dry_report(self):
-        runs = [self.reproduce(name) for name in ("fresh", "stale", "failed")]
+        runs = [self.reproduce(*names) for names in (["fresh"], ["-long", "stale"], ["failed"])]
         for run in runs:
             run.communicate(timeout=60)
         self.assertEqual([r.returncode for r in runs], [0, 1, 1])
 
-        dry = self.reproduce("-dry", "fresh", "stale", "failed", "neverRun")
+        dry = self.reproduce("-dry", "fresh", "stale", "failed", "neverRun")   # the long one too
         out, _ = dry.communicate(timeout=60)
         self.assertEqual(dry.returncode, 1, out)
         rows = self.report_rows()
@@ -88,6 +88,13 @@ class ReproduceTest(unittest.TestCase):
             report = f.read()
         self.assertIn("| caseA | fresh | `./Allrun 1 100.0 0` | 1 (1) | 1 / 0 / 0 |", report)
         self.assertIn("| caseB | stale | `./Allrun 1 103.0 0` | 1 (1) | 0 / 1 / 0 |", report)
+
+    def test_long_entry_is_skipped_without_long(self):
+        run = self.reproduce("stale")
+        out, _ = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 0, out)
+        self.assertIn("skipped, long", out)
+        self.assertFalse(os.path.exists(os.path.join(self.work, "stale")))
 
     def test_unknown_entry_is_a_usage_error(self):
         run = self.reproduce("noSuchEntry")
