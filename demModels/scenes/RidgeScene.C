@@ -17,6 +17,7 @@
 #include "LiggghtsInstance.H"
 #include "ParticleGather.H"
 #include "RandomPacking.H"
+#include "RigidSheet.H"
 #include "SceneSetup.H"
 #include "StlWriter.H"
 #include "TimeStep.H"
@@ -105,7 +106,8 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     }
 
     const Dictionary& a = d.subDict("assembly");
-    a.checkKeys({"pressDepth", "pressSpeed", "relaxTime", "youngsModulus", "dampingAlpha", "stiffenTime"});
+    a.checkKeys({"pressDepth", "pressSpeed", "relaxTime", "youngsModulus", "dampingAlpha", "stiffenTime",
+                 "layerHold"});
     s.pressDepth = a.getScalarOrDefault("pressDepth", s.pressDepth);
     if (s.pressDepth < 0.0) a.fail("pressDepth", "must not be negative");
     s.pressSpeed = a.getPositiveScalarOrDefault("pressSpeed", s.pressSpeed);
@@ -115,6 +117,9 @@ RidgeSettings RidgeSettings::readCase(const std::string& caseDir, const std::str
     s.stiffenTime = a.getScalarOrDefault("stiffenTime", s.stiffenTime);
     if (s.stiffenTime < 0.0) a.fail("stiffenTime", "must not be negative (s; 0: bond at the soft contacts' overlaps)");
     s.assemblyDampingAlpha = a.getScalarOrDefault("dampingAlpha", s.assemblyDampingAlpha);
+    // pressed: the layer stays where it was pressed while the contacts stiffen; balanced: it moves as a
+    // free rigid sheet until the keel's push balances its weight, buoyancy and the lid's hold
+    s.layerHeldWherePressed = a.getChoiceOrDefault("layerHold", {"pressed", "balanced"}, "pressed") == "pressed";
     if (s.assemblyDampingAlpha < 0.0 || s.assemblyDampingAlpha > 1.0)
     {
         a.fail("dampingAlpha", "expected a hysteretic alpha in [0, 1]");
@@ -305,6 +310,20 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
     const OverlapStatistics before = overlapStatistics(particles, allPositionsByTag(*lmp_));
     const double soft = settings_.assemblyYoungsModulus;
     const double hard = ice_.material.youngsModulus;
+    const long layerCount = static_cast<long>(particles.size()) - (layerFirstTag_ - 1);
+    std::unique_ptr<RigidSheet> sheet;
+    if (!settings_.layerHeldWherePressed && layerCount > 0)
+    {
+        // The layer presses the keel with the compaction's hold (the lid's load,
+        // which the lid then leaves to it) besides its own weight.
+        sheet = std::make_unique<RigidSheet>(*lmp_, layerFirstTag_, plates_ ? plateHoldLoad_ : 0.0,
+                                             settings_.assemblyDampingAlpha);
+        if (plates_)
+        {
+            plates_->place(plates_->bottom(), boxHigh_.z());
+        }
+        sheet->define();
+    }
     long steps = 0;
     for (int k = 1; k <= stages; ++k)
     {
@@ -325,13 +344,23 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
                 " soft-contact overlaps released more energy than the plates hold (a keel compacted under a high"
                 " hold pressure?)");
         }
-        if (plates_)
+        if (plates_ && !sheet)
         {
             // The lid holds the compaction's pressure, not its position: held in
             // place while the contacts stiffen, it would lock in a stress ten times
             // that (7.2 kPa against 0.6) that the bonds take at the release.
             plates_->backOffLid(plateHoldLoad_, plateMinTop_);
         }
+    }
+    if (sheet)
+    {
+        std::ostringstream moved;
+        moved << "Layer balanced on the stiffening keel (assembly.layerHold balanced): moved "
+              << sheet->travel() * 1e3 << " mm up, net force " << sheet->netForce() << " N, speed "
+              << sheet->speed() << " m/s at the end";
+        layerRise_ = sheet->travel();
+        sheet->release();
+        context_.log(moved.str());
     }
     const OverlapStatistics after = overlapStatistics(particles, allPositionsByTag(*lmp_));
     std::ostringstream msg;
@@ -555,10 +584,16 @@ void RidgeScene::assemble()
         stiffenContacts(layout.particles);
     }
 
+    // What the bonds are made under, for postProcessing/assembly.json.
+    Json assembly;
+    assembly["layer_hold"] = settings_.layerHeldWherePressed ? "pressed" : "balanced";
+    assembly["layer_rise_during_stiffening_m"] = layerRise_;
     if (plates_)
     {
         const PlateLoads loads = plates_->loads();
         const double area = settings_.layer.length*settings_.layer.width;
+        assembly["floor_plate_Pa"] = loads.floor/area;
+        assembly["lid_Pa"] = loads.lid/area;
         std::ostringstream msg;
         msg << "Compacted keel held between plates at z = " << plates_->bottom() << " and " << plates_->top()
             << " m: " << loads.floor/area << " Pa on the floor plate, " << loads.lid/area << " Pa on the lid, "
@@ -622,10 +657,15 @@ void RidgeScene::assemble()
 
     RidgeGeometry geometry = measureRidge(ridge.particles, layout.clBlock, settings_.layer.length, settings_.layer.width);
     geometry.waterLevel = ridge.waterLevel;
+    assembly["freeze_bonds"] = freezeStats.bonds;
+    assembly["freeze_bonds_layer_keel"] = layerToKeel;
+    assembly["confinement_mean_Pa"] = freezeStats.meanConfinement;
+    assembly["confinement_max_Pa"] = freezeStats.maxConfinement;
     if (context_.rank() == 0)
     {
         ridge.write(context_.path("DEM/ridge.h5"));
         writeGeometry(geometry, ridge.particles);
+        writeFileAtomically(context_.path("postProcessing/assembly.json"), jsonText(assembly));
     }
     // The load stage reads ridge.h5 on every rank next (-stage all).
     MPI_Barrier(context_.comm());

@@ -18,7 +18,12 @@ while the ridge is bonded:
 4. the same assembled ridge loaded on 1 and on 2 ranks: the platen force
    agrees to 1e-4 (relative; frictional rubble contacts, see below) until the broken-bond count first changes (the
    2-rank run stops after 6 mm; after fracture the comparison is statistical,
-   as levelIceBeamSmall_oneVsTwoRanks does it).
+   as levelIceBeamSmall_oneVsTwoRanks does it);
+5. assembly.layerHold balanced, on 1 and on 2 ranks: the layer rides the stiffening keel as a free
+   rigid sheet under the compaction's hold, so when the bonds are made the floor plate carries
+   the hold plus the ice's weight less its buoyancy (computed here from the bonded particles and
+   the water level) and nothing more, within 10 % of the hold (the layer held where it was pressed
+   locks the keel's push into the floor instead).
 
 usage: ridgeFlexureSmall.py RUBBLE_CASE RIDGE_CASE WORKDIR RUBBLE_APP RIDGE_APP"""
 import json
@@ -52,10 +57,13 @@ iceCases.run_app(rubble_app, keel, 1, ["-stage", "settle"], "log.rubbleDEM")
 iceCases.run_app(rubble_app, keel, 1, ["-stage", "compact"], "log.compact")
 
 
-def ridge(name, thickness, seed=1):
+def ridge(name, thickness, seed=1, entries=(), stage="all", ranks=1):
     path = iceCases.copy_case(ridge_case, os.path.join(work, name))
     props = os.path.join(path, "constant", "ridgeProperties")
     iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.join(keel, "DEM", "compacted.h5"))
+    # the small keel is compacted at the settling's contacts (a heap this thin of ice-stiff blocks jams)
+    iceCases.set_entry(props, "assembly.youngsModulus",
+                       iceCases.get_entry(os.path.join(keel, "constant", "rubbleProperties"), "settling.youngsModulus"))
     iceCases.set_entry(props, "box.length", LENGTH)
     iceCases.set_entry(props, "box.width", WIDTH)
     iceCases.set_entry(props, "consolidatedLayer.thickness", thickness)
@@ -72,7 +80,9 @@ def ridge(name, thickness, seed=1):
     # Fine samples: the keel's weak freeze-bonds start to break within the first half millimetre,
     # and the 1 vs 2 rank comparison below needs samples before that.
     iceCases.set_entry(control, "sampleInterval", 2e-5)
-    iceCases.run_app(ridge_app, path, 1, ["-stage", "all"], "log.ridgeDEM")
+    for entry, value in entries:
+        iceCases.add_entry(props, entry, value)
+    iceCases.run_app(ridge_app, path, ranks, ["-stage", stage], "log.ridgeDEM")
     return path
 
 
@@ -128,6 +138,25 @@ for k in range(min(len(a["force"]), len(b["force"]))):
 # (measured 3e-5); a real difference between the ranks is of order 1.
 check(compared >= 5 and worst <= 1e-4,
       f"1 vs 2 ranks: {compared} loaded samples before a bond breaks, largest force difference {worst:.1e} (<= 1e-4)")
+
+# 5. The balanced layer: the floor plate carries the hold and the ice's net weight, no locked-in push.
+RHO_W, G = 1000.0, 9.81
+hold = float(iceCases.get_entry(os.path.join(keel, "constant", "rubbleProperties"), "compaction.holdPressure"))
+for ranks in (1, 2):
+    path = ridge(f"layer10_balanced_np{ranks}", 0.10, entries=(("assembly.layerHold", "balanced"),),
+                 stage="assemble", ranks=ranks)
+    made = json.load(open(os.path.join(path, "postProcessing", "assembly.json")))
+    level = json.load(open(os.path.join(path, "postProcessing", "geometry.json")))["waterLevel"]
+    with h5py.File(os.path.join(path, "DEM", "ridge.h5"), "r") as f:
+        z, r, rho = f["particles/z"][()], f["particles/radius"][()], f["particles/density"][()]
+    depth = np.clip(level - (z - r), 0.0, 2 * r)
+    net_weight = float(np.sum(rho * 4 / 3 * np.pi * r ** 3) * G - RHO_W * G * np.sum(np.pi * depth ** 2 * (3 * r - depth) / 3))
+    expected = hold + net_weight / (LENGTH * WIDTH)
+    check(made["layer_hold"] == "balanced" and abs(made["floor_plate_Pa"] - expected) < 0.1 * hold,
+          f"balanced layer, {ranks} rank(s): floor plate {made['floor_plate_Pa']:.0f} Pa = hold {hold:.0f} Pa + net "
+          f"weight {net_weight / (LENGTH * WIDTH):+.0f} Pa (within {0.1 * hold:.0f} Pa); layer rose "
+          f"{made['layer_rise_during_stiffening_m'] * 1e3:.2f} mm, {made['freeze_bonds_layer_keel']} layer-keel "
+          f"freeze-bonds, confinement {made['confinement_mean_Pa'] * 1e-3:.0f} kPa mean")
 
 if failures:
     sys.exit("ridgeFlexureSmall: %d check(s) failed" % len(failures))

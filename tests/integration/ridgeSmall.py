@@ -12,7 +12,7 @@ usage: ridgeSmall.py STEP WORK BIN_DIR [ARG]
             the layer-keel freeze-bonds of ridge.h5, and against n_bonds x bond area x c_f sigma_t
             / (L B)
   compare   (b) the ridge without freeze-bonds is weaker (pull-up peak) than with the ultimate set
-  badInput  (d) missing entry, unknown test type, negative thickness, missing keel file, a keel
+  badInput  (d) missing entry, unknown test type, negative thickness, an unknown layerHold, missing keel file, a keel
             that came to rest at another contact modulus than the assembly's: a
             message naming the entry and a non-zero exit; a particle faster than the
             controlDict's maxParticleSpeed stops the run, naming particle, place and time
@@ -470,6 +470,8 @@ def bad_input(work, bin_dir):
            ["ridgeProperties", "type", "punchThrough", "flexure"])
     expect("negativeThickness", lambda p: iceCases.set_entry(p, "consolidatedLayer.thickness", -0.1),
            ["ridgeProperties", "thickness", "positive"])
+    expect("unknownLayerHold", lambda p: iceCases.add_entry(p, "assembly.layerHold", "floating"),
+           ["ridgeProperties", "layerHold", "floating", "pressed", "balanced"])
     expect("missingKeel", lambda p: iceCases.set_entry(p, "keel.settledRubble", '"noSuchKeel.h5"'),
            ["ridgeProperties", "settledRubble", "noSuchKeel.h5"])
 

@@ -28,7 +28,8 @@ runs/<resolution>/ into the committed results/ folder, and refuses unless all 16
 runs and the layers alone there are finished (or stopped after their failure, above): a partial set is never published (nor merged into the
 published table, which would mix result sets).
 
-Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--jobs N] [--runs 1,2,5] [--publish]
+Usage: studies/ridgeMatrix.py [--resolution default|quick|smoke] [--keels softened|iceStiff] [--jobs N]
+                              [--runs 1,2,5] [--publish]
   smoke (./Allrun -smoke): the quick settings on small keels of runs/smoke/keels
   (1.6 x 0.4 m), 10 mm of platen travel, results in runs/smoke: checks that the case runs.
 """
@@ -67,6 +68,17 @@ QUICK = {
 # go to runs/<resolution>-speed<V>/, apart from the matrix at the resolution's own speed.
 SPEED = None
 
+# The keels of this invocation (--keels): softened, the case's own (compacted at the settling's
+# softened contacts to 0.35, the layer held where it was pressed while the contacts stiffen), or
+# iceStiff (keels/keel<depth>iceStiff, compacted at the ice's stiffness to 0.45; the layer rides the
+# stiffening keel as a free rigid sheet): README "Keels at the ice's stiffness". Its runs go to
+# runs/<resolution>-iceStiff/; the layers alone, which have no keel, are the resolution's own.
+KEEL_SETS = {
+    "softened": {"suffix": "", "entries": {}},
+    "iceStiff": {"suffix": "iceStiff", "entries": {"assembly.youngsModulus": 1.95e8, "assembly.layerHold": "balanced"}},
+}
+KEELS = "softened"
+
 # The smoke resolution: the small keels' box and a short travel (system/controlDict).
 SMOKE_BOX = (1.6, 0.4)
 SMOKE_CONTROLS = {"maxTravel": 0.01, "minTravel": 0}
@@ -81,7 +93,7 @@ def matrix():
 
 
 def keel_case(run, resolution):
-    name = "keel" + run["keel"] + (QUICK["keelSuffix"] if resolution != "default" else "")
+    name = "keel" + run["keel"] + (QUICK["keelSuffix"] if resolution != "default" else "") + KEEL_SETS[KEELS]["suffix"]
     return os.path.join(CASE, "runs", "smoke", "keels", name) if resolution == "smoke" else os.path.join(CASE, "keels", name)
 
 
@@ -92,13 +104,20 @@ def layers_alone(runs):
     return [{"run": 0, "keel": "none", "set": runs[0]["set"], "cl_cm": cm, "alone": True} for cm in thicknesses]
 
 
-def runs_folder(resolution):
-    return os.path.join(CASE, "runs", resolution + ("-speed%g" % SPEED if SPEED else ""))
+def runs_folder(resolution, alone=False):
+    keels = "" if KEELS == "softened" or alone else "-" + KEELS
+    return os.path.join(CASE, "runs", resolution + ("-speed%g" % SPEED if SPEED else "") + keels)
+
+
+def label(resolution):
+    """The matrix's name in its table's file names and README section: the resolution, and the keels
+    where they are not the case's own."""
+    return resolution + ("" if KEELS == "softened" else "_" + KEELS)
 
 
 def run_dir(run, resolution):
     if run.get("alone"):
-        return os.path.join(runs_folder(resolution), "layerAlone_CL%d" % run["cl_cm"])
+        return os.path.join(runs_folder(resolution, alone=True), "layerAlone_CL%d" % run["cl_cm"])
     return os.path.join(runs_folder(resolution),
                         "run%02d_keel%s_%s_CL%d" % (run["run"], run["keel"], run["set"], run["cl_cm"]))
 
@@ -118,6 +137,11 @@ def prepare(run, resolution, target):
         keel = iceCases.keel_file(keel_case(run, resolution))
         iceCases.set_entry(props, "keel.settledRubble", '"%s"' % os.path.relpath(keel, target))
     iceCases.set_entry(props, "consolidatedLayer.thickness", run["cl_cm"] / 100.0)
+    for entry, value in ({} if run.get("alone") else KEEL_SETS[KEELS]["entries"]).items():
+        try:
+            iceCases.set_entry(props, entry, value)
+        except KeyError:
+            iceCases.add_entry(props, entry, value)
     iceCases.set_entry(os.path.join(target, "constant", "freezeBondProperties"), "fixedSetCoeffs.set", run["set"])
     if resolution != "default":
         for entry, value in QUICK.items():
@@ -302,7 +326,7 @@ def table_rows(runs, resolution):
 
 def write_table(rows, resolution, folder):
     os.makedirs(folder, exist_ok=True)
-    base = os.path.join(folder, "ridgeMatrix_" + resolution)
+    base = os.path.join(folder, "ridgeMatrix_" + label(resolution))
     columns = list(rows[0].keys())
     lines = [",".join(columns)] + [",".join('"%s"' % r[c] if c == "evidence" else str(r[c]) for c in columns)
                                    for r in rows]
@@ -338,7 +362,7 @@ def publication_record(runs, resolution):
         if stop:
             entry["stopped"] = stop
         entries.append(entry)
-    return {"resolution": resolution, "revision": iceCases.git_revision(),
+    return {"resolution": resolution, "keels": KEELS, "revision": iceCases.git_revision(),
             "published": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
             "machine": "%d cores" % (os.cpu_count() or 1), "runs": entries}
 
@@ -356,9 +380,11 @@ def readme_table(rows, record):
     lines = ["Published by `./Allrun%s -publish` at revision `%s` on %s from runs finished %s to %s "
              "(%s, wall times per run on 1 rank, runs side by side); sum of run wall times %.0f s. "
              "Generated from `results/ridgeMatrix_%s.csv`."
-             % (" -quick" if record["resolution"] == "quick" else "", record["revision"], record["published"],
+             % ((" -quick" if record["resolution"] == "quick" else "")
+                + (" -keels " + record["keels"] if record.get("keels", "softened") != "softened" else ""),
+                record["revision"], record["published"],
                 finished[0], finished[-1], record["machine"], sum(r["wall_s"] for r in record["runs"]),
-                record["resolution"]), "",
+                label(record["resolution"])), "",
              "| " + " | ".join(label for _, label in columns) + " |", "|" + "---|" * len(columns)]
     lines += ["| " + " | ".join(str(r[key]) for key, _ in columns) + " |" for r in rows]
     return "\n".join(lines)
@@ -388,7 +414,8 @@ def plot(rows, base):
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3)
     ax2.legend(fontsize=8)
-    fig.suptitle("Ridge flexure matrix (%s resolution)" % os.path.basename(base).split("_")[-1])
+    resolution, _, keels = os.path.basename(base)[len("ridgeMatrix_"):].partition("_")
+    fig.suptitle("Ridge flexure matrix (%s resolution%s)" % (resolution, ", keels " + keels if keels else ""))
     iceCases.save_figure(fig, base + ".png", dpi=120)
 
 
@@ -403,9 +430,15 @@ def main():
     parser.add_argument("--speed", type=iceCases.positive_number,
                         help="platen speed in m/s instead of the resolution's own (quick: 0.2; default: the "
                              "case's test.speed); the runs go to runs/<resolution>-speed<V>/")
+    parser.add_argument("--keels", choices=sorted(KEEL_SETS), default="softened",
+                        help="softened (the case's keels) or iceStiff (keels/keel<depth>iceStiff, default "
+                             "resolution only); the runs go to runs/<resolution>-iceStiff/")
     args = parser.parse_args()
-    global SPEED
+    global SPEED, KEELS
     SPEED = args.speed
+    KEELS = args.keels
+    if KEELS != "softened" and args.resolution != "default":
+        parser.error("argument --keels: %s keels are built at the default resolution only" % KEELS)
     if args.publish and SPEED:
         parser.error("argument --publish: publishes the matrix at the resolution's own speed (not with --speed)")
 
@@ -417,13 +450,13 @@ def main():
                    if not analysed(r, args.resolution)]
         if missing:
             sys.exit("ridgeMatrix: not published: %s not finished in %s (a partial matrix is never "
-                     "published; run them first)" % (", ".join(missing), os.path.join(CASE, "runs", args.resolution)))
+                     "published; run them first)" % (", ".join(missing), runs_folder(args.resolution)))
         rows = table_rows(runs, args.resolution)
         base = write_table(rows, args.resolution, os.path.join(CASE, "results"))
         plot(rows, base)
         record = publication_record(runs + layers_alone(runs), args.resolution)
         iceCases.write_atomically(base + ".json", json.dumps(record, indent=1) + "\n")
-        iceCases.write_readme_section(os.path.join(CASE, "README.md"), "ridgeMatrix_%s table" % args.resolution,
+        iceCases.write_readme_section(os.path.join(CASE, "README.md"), "ridgeMatrix_%s table" % label(args.resolution),
                                       readme_table(rows, record))
         print("Published: %s.csv, %s.md, %s.png, %s.json" % (base, base, base, base))
         return
