@@ -2,7 +2,8 @@
 """bin/reproduce on a project of tiny cases: entries run by separate bin/reproduce processes side by
 side are reported together, with each run's wall time and exit status, by one -dry over all (long
 entries included, which a plain call skips); a figure outside its tolerance is STALE and makes the
-exit status 1; -dry for an entry never run is a failure, not a fresh figure."""
+exit status 1; -dry for an entry never run is a failure, not a fresh figure; an entry that another
+bin/reproduce is running is not run again beside it (which would remove its scratch copy)."""
 import csv
 import json
 import os
@@ -10,12 +11,14 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 TOP = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # The case's run writes its summary; how long it takes and what it writes come from its arguments.
 ALLRUN = """#!/bin/sh
+touch started
 sleep "$1"
 mkdir -p postProcessing
 echo "{\\"force_N\\": $2}" > postProcessing/summary.json
@@ -41,7 +44,8 @@ class ReproduceTest(unittest.TestCase):
         entries = {"fresh": entry("caseA", 1, 100.0, 0, 100.0, 1e-6),
                    "stale": dict(entry("caseB", 1, 103.0, 0, 100.0, 0.02), long=True),
                    "failed": entry("caseC", 0, 100.0, 3, 100.0, 1e-6),
-                   "neverRun": entry("caseD", 0, 100.0, 0, 100.0, 1e-6)}
+                   "neverRun": entry("caseD", 0, 100.0, 0, 100.0, 1e-6),
+                   "slow": entry("caseE", 3, 100.0, 0, 100.0, 1e-6)}
         for e in entries.values():
             case = os.path.join(self.top, "cases", e["case"])
             os.makedirs(os.path.join(case, "results"))
@@ -88,6 +92,22 @@ class ReproduceTest(unittest.TestCase):
             report = f.read()
         self.assertIn("| caseA | fresh | `./Allrun 1 100.0 0` | 1 (1) | 1 / 0 / 0 |", report)
         self.assertIn("| caseB | stale | `./Allrun 1 103.0 0` | 1 (1) | 0 / 1 / 0 |", report)
+
+    def test_an_entry_running_elsewhere_is_not_run_beside_it(self):
+        first = self.reproduce("slow")
+        marker = os.path.join(self.work, "slow", "cases", "caseE", "started")
+        for _ in range(200):                 # until the first has made its copy and started the case
+            if os.path.exists(marker):
+                break
+            time.sleep(0.05)
+        second = self.reproduce("slow")
+        out2, _ = second.communicate(timeout=60)
+        out1, _ = first.communicate(timeout=60)
+        self.assertEqual(first.returncode, 0, out1)
+        self.assertEqual(second.returncode, 1, out2)
+        self.assertIn("another bin/reproduce is running it", out2)
+        self.assertTrue(os.path.exists(os.path.join(self.work, "slow", "cases", "caseE", "postProcessing",
+                                                    "summary.json")))
 
     def test_long_entry_is_skipped_without_long(self):
         run = self.reproduce("stale")
