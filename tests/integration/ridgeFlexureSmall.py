@@ -20,10 +20,11 @@ while the ridge is bonded:
    2-rank run stops after 6 mm; after fracture the comparison is statistical,
    as levelIceBeamSmall_oneVsTwoRanks does it);
 5. assembly.layerHold balanced, on 1 and on 2 ranks: the layer rides the stiffening keel as a free
-   rigid sheet under the compaction's hold, so when the bonds are made the floor plate carries
-   the hold plus the ice's weight less its buoyancy (computed here from the bonded particles and
-   the water level) and nothing more, within 10 % of the hold (the layer held where it was pressed
-   locks the keel's push into the floor instead).
+   rigid sheet under the compaction's hold (without a layer, the lid backs off to the hold ten
+   times a stage), so when the bonds are made the floor plate carries the hold plus the ice's
+   weight less its buoyancy (computed here from the bonded particles and the water level) and
+   nothing more, within 10 % of the hold (the layer held where it was pressed locks the keel's
+   push into the floor instead).
 
 usage: ridgeFlexureSmall.py RUBBLE_CASE RIDGE_CASE WORKDIR RUBBLE_APP RIDGE_APP"""
 import json
@@ -142,9 +143,9 @@ check(compared >= 5 and worst <= 1e-4,
 # 5. The balanced layer: the floor plate carries the hold and the ice's net weight, no locked-in push.
 RHO_W, G = 1000.0, 9.81
 hold = float(iceCases.get_entry(os.path.join(keel, "constant", "rubbleProperties"), "compaction.holdPressure"))
-for ranks in (1, 2):
-    path = ridge(f"layer10_balanced_np{ranks}", 0.10, entries=(("assembly.layerHold", "balanced"),),
-                 stage="assemble", ranks=ranks)
+for thickness, ranks in ((0.10, 1), (0.10, 2), (0.0, 1)):
+    path = ridge(f"layer{thickness * 100:.0f}_balanced_np{ranks}", thickness,
+                 entries=(("assembly.layerHold", "balanced"),), stage="assemble", ranks=ranks)
     made = json.load(open(os.path.join(path, "postProcessing", "assembly.json")))
     level = json.load(open(os.path.join(path, "postProcessing", "geometry.json")))["waterLevel"]
     with h5py.File(os.path.join(path, "DEM", "ridge.h5"), "r") as f:
@@ -153,7 +154,7 @@ for ranks in (1, 2):
     net_weight = float(np.sum(rho * 4 / 3 * np.pi * r ** 3) * G - RHO_W * G * np.sum(np.pi * depth ** 2 * (3 * r - depth) / 3))
     expected = hold + net_weight / (LENGTH * WIDTH)
     check(made["layer_hold"] == "balanced" and abs(made["floor_plate_Pa"] - expected) < 0.1 * hold,
-          f"balanced layer, {ranks} rank(s): floor plate {made['floor_plate_Pa']:.0f} Pa = hold {hold:.0f} Pa + net "
+          f"balanced, layer {thickness} m, {ranks} rank(s): floor plate {made['floor_plate_Pa']:.0f} Pa = hold {hold:.0f} Pa + net "
           f"weight {net_weight / (LENGTH * WIDTH):+.0f} Pa (within {0.1 * hold:.0f} Pa); layer rose "
           f"{made['layer_rise_during_stiffening_m'] * 1e3:.2f} mm, {made['freeze_bonds_layer_keel']} layer-keel "
           f"freeze-bonds, confinement {made['confinement_mean_Pa'] * 1e-3:.0f} kPa mean")
