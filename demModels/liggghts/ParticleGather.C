@@ -39,6 +39,18 @@ std::vector<double> gatherDoubles(MPI_Comm comm, const std::vector<double>& loca
 }
 
 
+double netForceOnTagsFrom(const LiggghtsInstance& lmp, MPI_Comm comm, long firstTag, int axis)
+{
+    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
+    double local = 0.0;
+    for (int i = 0; i < atom.nlocal; ++i)
+    {
+        if (atom.tag[i] >= firstTag) local += atom.f[i][axis];
+    }
+    return sumOverRanks(comm, local);
+}
+
+
 double totalKineticEnergy(const LiggghtsInstance& lmp)
 {
     const LAMMPS_NS::Atom& atom = *lmp.engine().atom;

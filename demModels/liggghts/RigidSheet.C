@@ -1,13 +1,12 @@
 #include "RigidSheet.H"
 
 #include "LiggghtsInstance.H"
+#include "ParticleGather.H"
 
 #include "atom.h"
 #include "fix_external.h"
 #include "lammps.h"
 #include "update.h"
-
-#include <mpi.h>
 
 #include <cmath>
 
@@ -31,7 +30,7 @@ void RigidSheet::define()
     {
         if (atom.tag[i] >= firstTag_) local += atom.rmass[i];
     }
-    MPI_Allreduce(&local, &mass_, 1, MPI_DOUBLE, MPI_SUM, lmp_.communicator());
+    mass_ = sumOverRanks(lmp_.communicator(), local);
     speed_ = netForce_ = travel_ = 0.0;
     lmp_.command(std::string("fix ") + fixId + " all external pf/callback 1 1");
     static_cast<LAMMPS_NS::FixExternal&>(lmp_.fix(fixId)).set_callback(&RigidSheet::callback, this);
@@ -59,15 +58,11 @@ void RigidSheet::callback(void* self, int64_t, int, int*, double**, double** fex
 void RigidSheet::move(double** fexternal)
 {
     LAMMPS_NS::Atom& atom = *lmp_.engine().atom;
-    double local = 0.0;
     for (int i = 0; i < atom.nlocal; ++i)
     {
         fexternal[i][0] = fexternal[i][1] = fexternal[i][2] = 0.0;
-        if (atom.tag[i] >= firstTag_) local += atom.f[i][2];
     }
-    double total = 0.0;
-    MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, lmp_.communicator());
-    netForce_ = total - downwardLoad_;
+    netForce_ = netForceOnTagsFrom(lmp_, lmp_.communicator(), firstTag_, 2) - downwardLoad_;
     const double dt = lmp_.engine().update->dt;
     const double damping = speed_ == 0.0 ? 0.0 : dampingAlpha_ * std::abs(netForce_) * (speed_ > 0.0 ? 1.0 : -1.0);
     speed_ += (netForce_ - damping) / mass_ * dt;

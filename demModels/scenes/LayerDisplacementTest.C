@@ -6,9 +6,6 @@
 #include "PlatenLoading.H"
 #include "ParticleGather.H"
 
-#include "atom.h"
-#include "lammps.h"
-
 #include <utility>
 
 namespace iceDEM
@@ -33,14 +30,7 @@ double LayerDisplacementTest::force(const LiggghtsInstance& lmp, MPI_Comm comm, 
 {
     // What the actuator holding the layer must apply: minus the net force of
     // bonds, contacts, gravity and water on the layer's particles.
-    const int axis = static_cast<int>(axis_);
-    const LAMMPS_NS::Atom& atom = *lmp.engine().atom;
-    double local = 0.0;
-    for (int i = 0; i < atom.nlocal; ++i)
-    {
-        if (atom.tag[i] >= layerFirstTag) local -= atom.f[i][axis];
-    }
-    return sumOverRanks(comm, local);
+    return -netForceOnTagsFrom(lmp, comm, layerFirstTag, static_cast<int>(axis_));
 }
 
 

@@ -339,13 +339,14 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         // (8.6 kPa for the 1.0 m one) one step per stage leaves 5.4 kPa after the twelve.
         const bool lidHolds = plates_ && !sheet && !settings_.layerHeldWherePressed;
         const int chunks = lidHolds ? lidBackOffsPerStage : 1;
-        lmp_->command("run " + std::to_string(std::max(1L, n / chunks)));
+        const long chunkSteps = std::max(1L, n / chunks);
+        lmp_->command("run " + std::to_string(chunkSteps));
         for (int c = 1; c < chunks; ++c)
         {
             plates_->backOffLid(plateHoldLoad_, plateMinTop_);
-            lmp_->command("run " + std::to_string(std::max(1L, n / chunks)) + " pre no post no");
+            lmp_->command("run " + std::to_string(chunkSteps) + " pre no post no");
         }
-        steps += chunks > 1 ? chunks * std::max(1L, n / chunks) : n;
+        steps += chunks * chunkSteps;
         const long present = sumOverRanks(context_.comm(), static_cast<long>(lmp_->engine().atom->nlocal));
         if (present != static_cast<long>(particles.size()))
         {
@@ -367,7 +368,7 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
     {
         std::ostringstream moved;
         moved << "Layer balanced on the stiffening keel (assembly.layerHold balanced): moved "
-              << sheet->travel() * 1e3 << " mm up, net force " << sheet->netForce() << " N, speed "
+              << std::abs(sheet->travel()) * 1e3 << (sheet->travel() < 0.0 ? " mm down" : " mm up") << ", net force " << sheet->netForce() << " N, speed "
               << sheet->speed() << " m/s at the end";
         layerRise_ = sheet->travel();
         sheet->release();
