@@ -99,9 +99,12 @@ def keel_case(run, resolution):
 
 def layers_alone(runs):
     """The layer-alone runs the given matrix runs are compared with: one per CL thickness above 0.
-    A layer alone has no keel and no freeze-bonds: its set is the first run's (it changes nothing)."""
+    A layer alone has no keel and no freeze-bonds: its set changes nothing, but its folder is reused
+    only when made from the same inputs, so it is always the matrix's first row's set, whichever runs
+    are asked for (it was the first asked run's: `-runs 16` made the shared layer again)."""
     thicknesses = sorted({r["cl_cm"] for r in runs if r["cl_cm"] > 0})
-    return [{"run": 0, "keel": "none", "set": runs[0]["set"], "cl_cm": cm, "alone": True} for cm in thicknesses]
+    layer_set = matrix()[0]["set"]
+    return [{"run": 0, "keel": "none", "set": layer_set, "cl_cm": cm, "alone": True} for cm in thicknesses]
 
 
 def runs_folder(resolution, alone=False):
@@ -240,16 +243,22 @@ def result_row(run, resolution):
     }
 
 
+# How ridgeDEM's summary begins the reason of a run it stopped itself (PlatenLoading::run); a killed
+# run's summary keeps the reason written when loading began ("in the making: ...").
+STOPPED_BY_ERROR = "stopped by an error: "
+
+
 def stopped_after_failure(target, drop=0.9):
     """The reason a ridge run stopped early (e.g. a particle faster than maxParticleSpeed) when it
     stopped after its failure: its force curve had fallen to `drop` of its peak or below, so the
-    peak and the breaks before the stop stand. None for a finished run, or one stopped earlier."""
+    peak and the breaks before the stop stand. None for a finished run, one stopped earlier, and one
+    killed (its summary still says it is in the making: it is resumed, not published)."""
     path = os.path.join(target, "postProcessing", "summary.json")
     curve = os.path.join(target, "postProcessing", "platenForce.csv")
     if not (os.path.exists(path) and os.path.exists(curve)):
         return None
     s = json.load(open(path))
-    if s.get("complete", True) or not s.get("reason"):
+    if s.get("complete", True) or not s.get("reason", "").startswith(STOPPED_BY_ERROR):
         return None
     c = iceCases.curve(target)
     if not c["force"] or c["force"][-1] > drop * max(c["force"]):
@@ -259,12 +268,21 @@ def stopped_after_failure(target, drop=0.9):
 
 def analysed(run, resolution):
     """Finished (or a ridge stopped after its failure, stopped_after_failure), and (a ridge)
-    classified by its failure analysis."""
+    classified by its failure analysis (failure_analysed)."""
     target = run_dir(run, resolution)
     if run.get("alone"):
         return iceCases.finished(target)
-    return (iceCases.finished(target) or stopped_after_failure(target)) and os.path.exists(
-        os.path.join(target, "postProcessing", "failureAnalysis", "summary.json"))
+    return failure_analysed(target)
+
+
+def failure_analysed(target):
+    """A ridge finished or stopped after its failure, with a failure analysis made after its breakage
+    record (an analysis of a run killed and then resumed to its end is of the record up to the kill:
+    made again)."""
+    analysis = os.path.join(target, "postProcessing", "failureAnalysis", "summary.json")
+    record = os.path.join(target, "postProcessing", "breakage.h5")
+    return ((iceCases.finished(target) or stopped_after_failure(target)) and os.path.exists(analysis)
+            and (not os.path.exists(record) or os.path.getmtime(analysis) >= os.path.getmtime(record)))
 
 
 def stopped_row(target):
