@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Tests of cases/ridgeFlexure/studies/keelComparison.py on a made-up ridgeFlexure case: the two
-published matrices joined run by run, the assembly read from the runs' logs (both spellings of a
-layer that sank), the README block written, and a clear exit when nothing is published in both."""
+published matrices joined run by run, the assembly read from the runs' assembly.json or logs (both
+spellings of a layer that sank), the README block written, and a clear exit when nothing is published in both."""
 import csv
+import json
 import os
 import subprocess
 import sys
@@ -99,6 +100,26 @@ class KeelComparisonTest(unittest.TestCase):
         with open(os.path.join(self.case, "results", "ridgeMatrix_keelComparison.csv"), newline="") as f:
             row = next(csv.DictReader(f))
         self.assertEqual((row["layer_rise_mm_softened"], row["layer_rise_mm_iceStiff"]), ("-2.5", "0.75"))
+
+    def test_a_resumed_run_reads_its_assembly_json(self):
+        rows = [(1, 1.0, "ultimate", 10, 1.25, 16.22, 4.936, 11.284, "mixed")]
+        self.publish("ridgeMatrix_default.csv", rows)
+        self.publish("ridgeMatrix_default_iceStiff.csv", rows)
+        self.log("default", "run01_keel1.0_ultimate_CL10", assembly_log(18172, 1412, 67, 1517.2, 44000))
+        resumed = "run01_keel1.0_ultimate_CL10"
+        self.log("default-iceStiff", resumed, "Loading: 16427 particles (13825 keel, 2602 layer)\n")
+        os.makedirs(os.path.join(self.case, "runs", "default-iceStiff", resumed, "postProcessing"))
+        with open(os.path.join(self.case, "runs", "default-iceStiff", resumed, "postProcessing", "assembly.json"), "w") as f:
+            json.dump({"layer_hold": "balanced", "layer_rise_during_stiffening_m": -0.000973, "floor_plate_Pa": 258.2,
+                       "lid_Pa": 0.0, "freeze_bonds": 2157, "freeze_bonds_layer_keel": 70,
+                       "confinement_mean_Pa": 18104.0, "confinement_max_Pa": 912345.0}, f)
+        self.assertEqual(self.run_tool().returncode, 0)
+        with open(os.path.join(self.case, "results", "ridgeMatrix_keelComparison.csv"), newline="") as f:
+            row = next(csv.DictReader(f))
+        self.assertEqual([row[k + "_iceStiff"] for k in ("floor_plate_kPa", "freeze_bonds", "layer_keel_bonds",
+                                                         "confinement_mean_kPa", "layer_rise_mm")],
+                         ["0.258", "2157", "70", "18.1", "-0.97"])
+        self.assertEqual(row["floor_plate_kPa_softened"], "18.172")  # the log, where there is no assembly.json
 
     def test_nothing_published_in_both_stops_with_a_message(self):
         self.publish("ridgeMatrix_default.csv", [(1, 0.5, "2min", 0, 0.55, 1.9, 0.0, 1.9, "x")])

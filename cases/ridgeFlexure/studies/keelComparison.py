@@ -15,6 +15,7 @@ Writes results/ridgeMatrix_keelComparison.csv and .md and the README section
 usage: studies/keelComparison.py [--case DIR]   (DIR: the ridgeFlexure case, this script's by default)"""
 import argparse
 import csv
+import json
 import os
 import re
 import sys
@@ -30,7 +31,18 @@ NUMBER = r"([-+0-9.eE]+)"
 
 
 def assembly_state(run_folder):
-    """What the log of a run's assembly says the bonds were made under (None where it has no log)."""
+    """What the bonds of a run were made under: its postProcessing/assembly.json (since 2026-11-29),
+    else the assembly lines of its log (None where it has neither: a resumed run's log is of its
+    resume only)."""
+    made = os.path.join(run_folder, "postProcessing", "assembly.json")
+    if os.path.exists(made):
+        with open(made) as f:
+            a = json.load(f)
+        return {"floor_plate_kPa": round(a["floor_plate_Pa"] * 1e-3, 3), "freeze_bonds": a["freeze_bonds"],
+                "layer_keel_bonds": a["freeze_bonds_layer_keel"],
+                "confinement_mean_kPa": round(a["confinement_mean_Pa"] * 1e-3, 1),
+                "confinement_max_kPa": round(a["confinement_max_Pa"] * 1e-3, 0),
+                "layer_rise_mm": round(a["layer_rise_during_stiffening_m"] * 1e3, 2)}
     log = os.path.join(run_folder, "log.ridgeDEM")
     if not os.path.exists(log):
         return None
@@ -95,7 +107,8 @@ def main():
              ("layer_rise_mm", "layer rose [mm]"), ("depth_m", "depth [m]"), ("failure_force_kN", "failure force [kN]"),
              ("keel_contribution_kN", "keel's contribution [kN]"), ("failure_mode", "mode")]
     md = ["From `results/ridgeMatrix_default.csv` (softened keels) and `results/ridgeMatrix_default_iceStiff.csv`"
-          " (keels at the ice's stiffness), and the assembly lines of each run's log. Each cell: softened / iceStiff.",
+          " (keels at the ice's stiffness), and what each run's bonds were made under (its"
+          " `postProcessing/assembly.json`, or the assembly lines of its log). Each cell: softened / iceStiff.",
           "", "| " + " | ".join(label for _, label in shown) + " |", "|" + "---|" * len(shown)]
     for r in table:
         cells = []
