@@ -45,10 +45,11 @@ class ReproduceTest(unittest.TestCase):
                    "stale": dict(entry("caseB", 1, 103.0, 0, 100.0, 0.02), long=True),
                    "failed": entry("caseC", 0, 100.0, 3, 100.0, 1e-6),
                    "neverRun": entry("caseD", 0, 100.0, 0, 100.0, 1e-6),
-                   "slow": entry("caseE", 3, 100.0, 0, 100.0, 1e-6)}
+                   "slow": entry("caseE", 3, 100.0, 0, 100.0, 1e-6),
+                   "caseAOther": entry("caseA", 0, 100.0, 0, 100.0, 1e-6)}
         for e in entries.values():
             case = os.path.join(self.top, "cases", e["case"])
-            os.makedirs(os.path.join(case, "results"))
+            os.makedirs(os.path.join(case, "results"), exist_ok=True)
             with open(os.path.join(case, "Allrun"), "w") as f:
                 f.write(ALLRUN)
             os.chmod(os.path.join(case, "Allrun"), 0o755)
@@ -115,6 +116,19 @@ class ReproduceTest(unittest.TestCase):
         self.assertEqual(run.returncode, 0, out)
         self.assertIn("skipped, long", out)
         self.assertFalse(os.path.exists(os.path.join(self.work, "stale")))
+
+    def test_exact_selects_the_entry_not_its_case(self):
+        for args, expected in ((["-list", "caseA"], ["fresh", "caseAOther"]), (["-list", "-exact", "fresh"], ["fresh"]),
+                               (["-list", "fresh"], ["fresh"])):
+            run = self.reproduce(*args)
+            out, _ = run.communicate(timeout=60)
+            self.assertEqual(run.returncode, 0, out)
+            listed = [line.split(":")[0] for line in out.splitlines() if line and not line.startswith(" ")]
+            self.assertEqual(listed, expected, args)
+        run = self.reproduce("-exact", "caseA")          # a case's name is no entry's
+        out, _ = run.communicate(timeout=60)
+        self.assertEqual(run.returncode, 2, out)
+        self.assertIn("caseA: no such entry in", out)
 
     def test_unknown_entry_is_a_usage_error(self):
         run = self.reproduce("noSuchEntry")
