@@ -325,6 +325,11 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         }
         sheet->define();
     }
+    // A balanced keel without a layer is held by the lid alone, which backs off one
+    // estimated step at a time: from the pressure a deep keel was compacted under
+    // (8.6 kPa for the 1.0 m one) one step per stage leaves 5.4 kPa after the twelve.
+    const bool lidHolds = plates_ && !sheet && !settings_.layerHeldWherePressed;
+    const int chunks = lidHolds ? lidBackOffsPerStage : 1;
     long steps = 0;
     for (int k = 1; k <= stages; ++k)
     {
@@ -334,11 +339,6 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
         setContactStiffness();
         bonds_->changeProperties(stage);
         const long n = std::max(1L, std::lround(settings_.stiffenTime / stages / dt_));
-        // A balanced keel without a layer is held by the lid alone, which backs off one
-        // estimated step at a time: from the pressure a deep keel was compacted under
-        // (8.6 kPa for the 1.0 m one) one step per stage leaves 5.4 kPa after the twelve.
-        const bool lidHolds = plates_ && !sheet && !settings_.layerHeldWherePressed;
-        const int chunks = lidHolds ? lidBackOffsPerStage : 1;
         const long chunkSteps = std::max(1L, n / chunks);
         lmp_->command("run " + std::to_string(chunkSteps));
         for (int c = 1; c < chunks; ++c)
@@ -368,8 +368,8 @@ void RidgeScene::stiffenContacts(const std::vector<ParticleSpec>& particles)
     {
         std::ostringstream moved;
         moved << "Layer balanced on the stiffening keel (assembly.layerHold balanced): moved "
-              << std::abs(sheet->travel()) * 1e3 << (sheet->travel() < 0.0 ? " mm down" : " mm up") << ", net force " << sheet->netForce() << " N, speed "
-              << sheet->speed() << " m/s at the end";
+              << std::abs(sheet->travel()) * 1e3 << (sheet->travel() < 0.0 ? " mm down" : " mm up")
+              << ", net force " << sheet->netForce() << " N, speed " << sheet->speed() << " m/s at the end";
         layerRise_ = sheet->travel();
         sheet->release();
         context_.log(moved.str());
