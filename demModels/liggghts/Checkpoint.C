@@ -12,10 +12,11 @@ namespace iceDEM
 namespace
 {
 
-constexpr std::uint64_t magic = 0x69636544454d3034ULL;   // "iceDEM04"
+constexpr std::uint64_t magic = 0x69636544454d3035ULL;   // "iceDEM05"
 constexpr std::uint64_t magicOfVersion1 = 0x69636544454d3031ULL;   // LoadingState without liggghtsStepAtStart
 constexpr std::uint64_t magicOfVersion2 = 0x69636544454d3032ULL;   // without the inputs' provenance
 constexpr std::uint64_t magicOfVersion3 = 0x69636544454d3033ULL;   // break events without their separation
+constexpr std::uint64_t magicOfVersion4 = 0x69636544454d3034ULL;   // LoadingState without the wall time
 
 class Writer
 {
@@ -172,7 +173,8 @@ Checkpoint Checkpoint::read(const std::string& path)
     }
     Reader r(in, path);
     const auto start = r.get<std::uint64_t>();
-    if (start == magicOfVersion1 || start == magicOfVersion2 || start == magicOfVersion3)
+    if (start == magicOfVersion1 || start == magicOfVersion2 || start == magicOfVersion3
+        || start == magicOfVersion4)
     {
         throw std::runtime_error(path + ": written by an older version of the program; delete the "
             "checkpoint folder and start again");

@@ -334,18 +334,17 @@ void BeamScene::run()
     hooks.stopEjecta = [this] { return freezeEjecta(); };
     hooks.failure = [this] { return forces_.failure(); };
     hooks.extras = [this] { return std::vector<double>{settings_.endSupport->reaction(context_.comm())}; };
-    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(context_.wallSeconds()); });
-    loading_->logEnd(context_.wallSeconds());
+    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(); });
+    loading_->logEnd();
 }
 
 
-void BeamScene::writeSummary(double wallSeconds) const
+void BeamScene::writeSummary() const
 {
     const CsvWriter& forceCurve = loading_->curve();
     const BreakageRecord& breaks = loading_->breakage();
     const LoadingState& state = loading_->state();
-    const double loopSeconds = loading_->loopSeconds();
-    const long steps = state.steps, loopSteps = loading_->loopSteps();
+    const long steps = state.steps;
     if (context_.rank() != 0)
     {
         return;
@@ -362,7 +361,7 @@ void BeamScene::writeSummary(double wallSeconds) const
     {
         throw RunError
         (
-            "the platen never touched the beam in " + std::to_string(loopSteps)
+            "the platen never touched the beam in " + std::to_string(loading_->loopSteps())
           + " loading steps (travel " + std::to_string(travel.empty() ? 0.0 : travel.back())
           + " m): no force curve to analyse and no summary.json; run more steps (-steps) or reduce"
             " platen.initialGap"
@@ -452,11 +451,9 @@ void BeamScene::writeSummary(double wallSeconds) const
     j["dt"] = body_.dt;
     j["ranks"] = context_.ranks();
     j["inputs_fingerprint"] = loading_->inputs().fingerprint();
-    j["wall_s"] = wallSeconds;
-    j["loop_wall_s"] = loopSeconds;
+    loading_->addRunCostFigures(j);
     j["frames"] = state.frame;
     j["frames_wall_s"] = loading_->frameSeconds();
-    j["particle_steps_per_s"] = loopSteps * body_.particles.size() / loopSeconds;
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 
     // The curve again, with displacement measured from first contact.

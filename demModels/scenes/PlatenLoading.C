@@ -146,6 +146,7 @@ PlatenLoading::PlatenLoading
     control_(control),
     particleCount_(particleCount),
     fixedType_(fixedType),
+    wallStart_(context.startTime()),
     curve_(curveColumns(extraColumns))
 {
     state_.dt = dt;
@@ -227,6 +228,7 @@ void PlatenLoading::resumeFrom(const Checkpoint& c, LiggghtsInstance& lmp, IceBo
     resumedBonds_ = c.bonds;
 
     state_ = c.state;
+    wallBeforeResume_ = c.state.wallSeconds;
     for (const auto& row : c.curveRows) curve_.addRow(row);
     for (const BreakEvent& e : c.breaks) breakage_.append(e);
     particlesPvd_ = std::make_unique<PvdCollection>(PvdCollection::read(context_.path("VTK/particles.pvd")));
@@ -444,9 +446,25 @@ long PlatenLoading::stepsPerSampleInWholeAdvances(long stepsPerAdvance) const
 }
 
 
-void PlatenLoading::logEnd(double wallSeconds) const
+double PlatenLoading::wallSeconds() const
 {
-    const std::string ended = "End: " + std::to_string(state_.steps) + " steps in " + formatDuration(wallSeconds)
+    return wallBeforeResume_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart_).count();
+}
+
+
+void PlatenLoading::addRunCostFigures(Json& j) const
+{
+    j["wall_s"] = wallSeconds();
+    j["wall_before_resume_s"] = wallBeforeResume_;
+    j["loop_wall_s"] = loopSeconds_;
+    j["particle_steps_per_s"] = loopSeconds_ > 0.0 ? loopSteps() * double(particleCount_) / loopSeconds_ : 0.0;
+}
+
+
+void PlatenLoading::logEnd() const
+{
+    const std::string ended = "End: " + std::to_string(state_.steps) + " steps in " + formatDuration(wallSeconds())
+        + (wallBeforeResume_ > 0.0 ? " (" + formatDuration(wallBeforeResume_) + " of them before the resume)" : "")
         + ", " + std::to_string(breakage_.size()) + " bonds broken";
     if (motionPrescribed_)
     {
@@ -692,6 +710,7 @@ void PlatenLoading::writeCheckpoint(LiggghtsInstance& lmp, IceBondForces& bonds)
     {
         Checkpoint c;
         c.state = state_;
+        c.state.wallSeconds = wallSeconds();
         c.provenance = inputs_.text();
         c.curveColumns = curve_.columns();
         for (std::size_t k = 0; k < curve_.nRows(); ++k) c.curveRows.push_back(curve_.row(k));

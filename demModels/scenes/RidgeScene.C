@@ -984,6 +984,7 @@ void RidgeScene::load()
         context_, settings_.loading, dt_,
         particleCount_, fixedType, extraColumnNames
     );
+    loading_->measureWallFrom(wallStart);
     loading_->setInputs(loadingInputs(ridgeInputs));
     loading_->setTimeStepChangedAtStart(settleDt != dt_);
     loading_->setMotionPrescribed(!test_->integratesParticles());
@@ -1102,16 +1103,12 @@ void RidgeScene::load()
         hooks.advance = externalWater_->advance;
         hooks.stepsPerAdvance = externalWater_->stepsPerAdvance;
     }
-    auto stageWall = [wallStart]
-    {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    };
-    loading_->run(*lmp_, *bonds_, hooks, [&] { writeSummary(geometry, stageWall()); });
-    loading_->logEnd(stageWall());
+    loading_->run(*lmp_, *bonds_, hooks, [&] { writeSummary(geometry); });
+    loading_->logEnd();
 }
 
 
-void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
+void RidgeScene::writeSummary(const RidgeGeometry& g) const
 {
     if (context_.rank() != 0)
     {
@@ -1203,10 +1200,7 @@ void RidgeScene::writeSummary(const RidgeGeometry& g, double wallSeconds) const
     j["dt"] = dt_;
     j["ranks"] = context_.ranks();
     j["inputs_fingerprint"] = loading_->inputs().fingerprint();
-    j["wall_s"] = wallSeconds;
-    j["loop_wall_s"] = loading_->loopSeconds();
-    j["particle_steps_per_s"] = loading_->loopSeconds() > 0.0
-          ? loading_->loopSteps() * double(particleCount_) / loading_->loopSeconds() : 0.0;
+    loading_->addRunCostFigures(j);
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
 

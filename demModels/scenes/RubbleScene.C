@@ -474,7 +474,7 @@ double RubbleScene::advance(long chunk, bool& first, double& t, const std::strin
 }
 
 
-void RubbleScene::writeSettlingCheckpoint(double t)
+void RubbleScene::writeSettlingCheckpoint(double t, double wallSeconds)
 {
     // LIGGGHTS' restart first, named by its step, then the saved state that
     // names it, written atomically; older restarts go only after that, so a
@@ -486,6 +486,7 @@ void RubbleScene::writeSettlingCheckpoint(double t)
     state.provenance = settlingInputs_.text();
     state.kind = SavedRubble::settlingCheckpoint;
     state.restart = restartName;
+    state.wallSeconds = wallSeconds;
     if (context_.rank() == 0)
     {
         std::filesystem::rename(dir + "/settling.restart.tmp", dir + "/" + restartName);
@@ -671,6 +672,7 @@ void RubbleScene::settle()
                 + "'): start the settling again (without -resume)");
         }
         t = saved.time;
+        settleWallBeforeResume_ = saved.wallSeconds;
         context_.log("Resuming the settling from " + checkpoint + " at t = " + formatNumber(t) + " s");
         startLiggghts(&saved, settlingIce_, restart);
         steps_ = lmp_->step();
@@ -700,6 +702,7 @@ void RubbleScene::settle()
     }
     const auto start = std::chrono::steady_clock::now();
     const long startStep = steps_;
+    const double startTime = t;
     double nextCheckpoint = t + settings_.checkpointInterval;
     double nextLog = t;
     int quietChecks = 0;
@@ -725,14 +728,14 @@ void RubbleScene::settle()
             std::ostringstream line;
             line << std::fixed << std::setprecision(2) << "  t = " << t << " s  kinetic energy "
                  << std::scientific << std::setprecision(2) << ke << " J/particle  "
-                 << std::setprecision(2) << n*double(steps_)/std::max(wall, 1e-9) << " particle-steps/s  "
-                 << "at most " << formatDuration(wall/std::max(t, 1e-9)*(settings_.maxTime - t)) << " left";
+                 << std::setprecision(2) << n*double(steps_ - startStep)/std::max(wall, 1e-9) << " particle-steps/s  "
+                 << "at most " << formatDuration(wall/std::max(t - startTime, 1e-9)*(settings_.maxTime - t)) << " left";
             context_.log(line.str());
             nextLog = t + 1.0;
         }
         if (t >= nextCheckpoint && !externalWater_)
         {
-            writeSettlingCheckpoint(t);
+            writeSettlingCheckpoint(t, settleWallBeforeResume_ + wall);
             first = true;       // the next run makes its set-up, as a resumed run's first does
             nextCheckpoint = t + settings_.checkpointInterval;
         }
@@ -800,8 +803,9 @@ void RubbleScene::writeSettlingSummary() const
     j["steps"] = steps_;
     j["dt"] = dt_;
     j["ranks"] = long(context_.ranks());
-    j["wall_s"] = settleWall_;      // of this run (a resumed one: since the resume)
-    j["wall_per_simulated_s"] = settleWall_/std::max(double(settleSteps_)*dt_, 1e-12);
+    j["wall_s"] = settleWallBeforeResume_ + settleWall_;
+    j["wall_before_resume_s"] = settleWallBeforeResume_;
+    j["wall_per_simulated_s"] = settleWall_/std::max(double(settleSteps_)*dt_, 1e-12);   // of this run
     j["particle_steps_per_s"] = particleSteps/std::max(settleWall_, 1e-9);
     j["inputs_fingerprint"] = settlingInputs_.fingerprint();
     std::filesystem::create_directories(context_.path("postProcessing"));
@@ -1222,7 +1226,7 @@ void RubbleScene::writeSummary(double wallSeconds) const
     j["steps"] = steps_;
     j["dt"] = dt_;
     j["ranks"] = long(context_.ranks());
-    j["settling_wall_s"] = settleWall_;
+    j["settling_wall_s"] = settleWallBeforeResume_ + settleWall_;
     j["settled_inputs_fingerprint"] = settlingInputs_.fingerprint();
     j["inputs_fingerprint"] = bondingInputs_.fingerprint();
     j["wall_s"] = wallSeconds;

@@ -457,12 +457,12 @@ void ThreePointBendingScene::run()
     hooks.extras = [this] { return std::vector<double>{midspanDeflection(), supportReaction()}; };
     hooks.stopEjecta = [this] { return stopEjecta(); };
     hooks.failure = [this] { return forces_.failure(); };
-    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(context_.wallSeconds()); });
-    loading_->logEnd(context_.wallSeconds());
+    loading_->run(*lmp_, *forces_.bonds, hooks, [this] { writeSummary(); });
+    loading_->logEnd();
 }
 
 
-void ThreePointBendingScene::writeSummary(double wallSeconds) const
+void ThreePointBendingScene::writeSummary() const
 {
     const CsvWriter& curve = loading_->curve();
     const BreakageRecord& breaks = loading_->breakage();
@@ -563,9 +563,7 @@ void ThreePointBendingScene::writeSummary(double wallSeconds) const
     j["dt"] = body_.dt;
     j["ranks"] = long(context_.ranks());
     j["inputs_fingerprint"] = loading_->inputs().fingerprint();
-    j["wall_s"] = wallSeconds;
-    j["loop_wall_s"] = loading_->loopSeconds();
-    j["particle_steps_per_s"] = loading_->loopSteps() * double(body_.particles.size()) / loading_->loopSeconds();
+    loading_->addRunCostFigures(j);
     writeFileAtomically(context_.path("postProcessing/summary.json"), jsonText(j));
 }
 

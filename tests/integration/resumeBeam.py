@@ -2,7 +2,8 @@
 """A run stopped part-way (as if killed while writing its next checkpoint: a
 newer LIGGGHTS restart and a half-written one lie beside the last complete
 checkpoint) and resumed gives the answer of the uninterrupted run to the last
-bit: the same force curve and time axis, peak and broken bonds. Before that,
+bit: the same force curve and time axis, peak and broken bonds, and a wall time that counts the
+stopped run's up to the checkpoint (wall_before_resume_s). Before that,
 a resume against other inputs (another platen speed on the command line,
 another breakN) is refused with a message naming the input and the
 checkpoint, and leaves the checkpoint as it was.
@@ -27,6 +28,7 @@ checkpoint = os.path.join(stopped, "DEM", "checkpoint")
 restarts = [f for f in os.listdir(checkpoint) if f.startswith("liggghts.restart")]
 if len(restarts) != 1:
     sys.exit(f"FAIL: expected one LIGGGHTS restart in {checkpoint}, found {restarts}")
+stopped_wall = iceCases.summary(stopped)["wall_s"]
 newer_step = int(restarts[0].rsplit(".", 1)[1]) + 1400
 shutil.copy(os.path.join(checkpoint, restarts[0]), os.path.join(checkpoint, f"liggghts.restart.{newer_step}"))
 with open(os.path.join(checkpoint, "liggghts.restart.tmp"), "wb") as f:
@@ -69,6 +71,10 @@ if sa["peak_force_N"] != sb["peak_force_N"]:
 na, nb = sa["crack_pattern"]["broken_bonds"], sb["crack_pattern"]["broken_bonds"]
 if na != nb:
     failed.append(f"broken bonds {na} vs {nb}")
+before, total = sb.get("wall_before_resume_s", 0.0), sb.get("wall_s", 0.0)
+if not (0.0 < before <= stopped_wall and total > before):
+    failed.append(f"the resumed run's wall_s {total:.3g} s should include the {before:.3g} s before the resume,"
+                  f" more than 0 and at most the stopped run's {stopped_wall:.3g} s")
 left = sorted(f for f in os.listdir(checkpoint) if f.startswith("liggghts.restart"))
 if len(left) > 1:
     failed.append(f"stale restarts left in the checkpoint: {left}")

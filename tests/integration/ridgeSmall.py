@@ -37,6 +37,7 @@ import os
 import subprocess
 import shutil
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -547,10 +548,12 @@ def faults(work, bin_dir):
     checkpoint = os.path.join(killed, "DEM", "checkpoint", "ridgeDEM.checkpoint")
     pick = random.Random(int(os.environ.get("ICEDEM_FAULT_SEED", "1")))
     kills = []
+    killed_runs_started = time.monotonic()
     for attempt in range(3):
         kills.append(pick.uniform(0.0, 0.6))
         iceCases.kill_after_new_checkpoint(app, killed, ["-stage", "all"] + (["-resume"] if attempt else []),
                                            checkpoint, f"log.ridgeDEM.{attempt}", kills[-1])
+    killed_runs_wall = time.monotonic() - killed_runs_started
     check(not iceCases.finished(killed),
           f"killed three times, each {', '.join(f'{d:.2f}' for d in kills)} s after a new checkpoint, "
           "before the run could finish")
@@ -561,6 +564,11 @@ def faults(work, bin_dir):
     check(a["time"] == b["time"] and a["force"] == b["force"] and a["brokenBonds"] == b["brokenBonds"],
           f"resumed after three kills: {len(b['time'])} samples against {len(a['time'])}, time axis, force and "
           f"broken bonds {'identical' if a['force'] == b['force'] else 'DIFFERENT'} to the uninterrupted run's")
+    resumed = iceCases.summary(killed)
+    before, total = resumed.get("wall_before_resume_s", 0.0), resumed.get("wall_s", 0.0)
+    check(0.0 < before <= killed_runs_wall and total > before,
+          f"wall_s {total:.3g} s includes {before:.3g} s of the killed runs' loading up to the checkpoint "
+          f"resumed from (they took {killed_runs_wall:.3g} s in all)")
 
 
 def refused(app, case, args, log, names):

@@ -168,6 +168,10 @@ SavedRubble readStage(hid_t file, const std::string& path)
     {
         r.contactYoungsModulus = readScalarAttribute(root.get(), "contactYoungsModulus", path);
     }
+    if (H5Aexists(root.get(), "wallSeconds") > 0)
+    {
+        r.wallSeconds = readScalarAttribute(root.get(), "wallSeconds", path);
+    }
     return r;
 }
 
@@ -208,6 +212,10 @@ void SavedRubble::write(const std::string& path) const
         if (std::isfinite(contactYoungsModulus))
         {
             writeScalarAttribute(root.get(), "contactYoungsModulus", contactYoungsModulus, path);
+        }
+        if (wallSeconds > 0.0)
+        {
+            writeScalarAttribute(root.get(), "wallSeconds", wallSeconds, path);
         }
     });
 }
