@@ -917,7 +917,7 @@ void RubbleScene::compact()
             << compacted_.startPorosity << " between them) move at up to " << settings_.compactionSpeed
             << " m/s to z = " << finalBottom << " and " << finalBottom + finalGap << " m, " << finalGap
             << " m apart (porosity " << settings_.targetPorosity
-            << "), then hold " << settings_.holdTime << " s, the lid backing off to " << settings_.holdPressure
+            << "), then hold " << settings_.holdTime << " s, the lid backing off towards " << settings_.holdPressure
         << " Pa; stops if the lid pressure exceeds "
             << settings_.maxCompactionPressure << " Pa";
         context_.log(msg.str());
@@ -1005,8 +1005,12 @@ void RubbleScene::compact()
     compacted_.heldOverlaps = blockOverlaps();
     std::ostringstream msg;
     msg << "Compacted in " << t << " s (" << formatDuration(compacted_.wall) << "): porosity " << compacted_.startPorosity
-        << " -> " << compacted_.closedPorosity << ", " << compacted_.porosity << " after the lid backed off to "
-        << settings_.holdPressure << " Pa; plates at z = " << compacted_.plateBottom << " and "
+        << " -> " << compacted_.closedPorosity << ", " << compacted_.porosity << " after a " << settings_.holdTime
+        << " s hold, the lid backing off towards " << settings_.holdPressure << " Pa"
+        << (compacted_.lidPressure > 1.5*settings_.holdPressure
+            ? " (it did not reach it: each back-off moves the lid by the excess load over the stiffness of the"
+              " spheres touching it, and the rubble behind them springs back by most of that)" : "")
+        << "; plates at z = " << compacted_.plateBottom << " and "
         << compacted_.plateTop << " m; lid " << compacted_.lidPressure << " Pa, floor " << compacted_.floorPressure
         << " Pa at the end of the hold; contacts at E = " << compactionIce_.material.youngsModulus << " Pa: "
         << compacted_.closedOverlaps.touchingPairs << " touching block pairs, mean overlap "
