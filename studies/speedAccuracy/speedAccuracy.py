@@ -58,6 +58,8 @@ SCENES = (
     ("Freeze-bond shear: the calibration sweep (scenes.md 4)", "freezeBondShear", 0.05, ("slope", "strength")),
     ("Rubble beam: settling (scenes.md 5)", "rubbleBeam", 0.05, ("aboveWater",)),
     ("Rubble punch: the cuboid keel's first 30 mm (scenes.md 6)", "rubblePunch", 0.05, ("peakForce",)),
+    ("Rubble punch: inertia scaling at 5 mm/s, the first 30 mm (scenes.md 6)", "rubblePunchInertia", 0.05,
+     ("peakForce",)),
     ("Ridge flexure: run 6, quick and default resolution (scenes.md 7)", "ridgeFlexure", 0.05, ("failureForce",)),
     ("Keel-to-layer bond (scenes.md 8)", "keelBond", 0.05, ("pullUp", "shear")),
     ("Floating block: the water level (scenes.md 9)", "floatingBlock", 0.01, ("submerged",)),

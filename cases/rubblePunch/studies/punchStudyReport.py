@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The report of a punch study here (supportsPlaten, bondSets, supportsEmpirical): the platen
+"""The report of a punch study (here: supportsPlaten, bondSets, supportsEmpirical; or
+studies/rubblePunchInertia): the platen
 force, its buoyancy share and the rest (the rubble's) against travel for each finished point
 (STUDY_FOLDER/runs/<point>/.../runs/<keel>), drawn by the case's own plotPunch.plot_forces into
 STUDY_FOLDER/results/forces.png, and the study's README table (between `<!-- study table -->`
@@ -14,6 +15,7 @@ import glob
 import json
 import math
 import os
+import shlex
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -28,7 +30,7 @@ COLUMNS = {
     "buoyancyAtPeak": ("buoyancy share there [N]", 1, 0),
     "supportReactionAtPeak": ("support reaction there [N]", 1, 0),
     "rubbleSharePeak": ("force less buoyancy, largest [N]", 1, 0),
-    "brokenBonds": ("broken bonds at 100 mm", 1, 0),
+    "brokenBonds": ("broken bonds at the end", 1, 0),
     "brokenBeforePeak": ("broken before the peak", 1, 0),
     "brokenInShear": ("broken in shear", 1, 0),
     "tensionShare": ("broken in tension [%]", 100, 0),
@@ -37,6 +39,9 @@ COLUMNS = {
     "firstFailureFromLoadLine": ("from the load line [m]", 1, 2),
     "firstFailureHeight": ("height in keel", 1, 2),
     "bottomCentreTensionShare": ("bottom-centre tension, first 10", 1, 1),
+    "kineticToWork": ("kinetic energy / platen work", 1, 4),
+    "n_steps": ("steps", 1, 0),
+    "wall_s": ("wall [s]", 1, 0),
 }
 
 
@@ -85,10 +90,10 @@ def main(folder, beside):
         rows = list(csv.DictReader(f))
     header = list(rows[0])
     knobs = header[1:header.index("status")]
-    study = os.path.basename(os.path.abspath(folder))
+    study = os.path.relpath(os.path.abspath(folder), iceCases.TOP)
     iceCases.write_readme_table(os.path.join(folder, "README.md"), "study table",
-                                " ".join([f"cases/rubblePunch/studies/punchStudyReport.py cases/rubblePunch/studies/{study}"]
-                                         + beside),
+                                " ".join(["cases/rubblePunch/studies/punchStudyReport.py", study]
+                                         + [shlex.quote(b) for b in beside]),
                                 "results/table.csv", table_markdown(rows, knobs))
 
 
