@@ -21,10 +21,11 @@ run=$case/runs/cuboid-inertia$factor
 rm -rf "$run"; mkdir -p "$run/DEM"
 cp -r "$published/constant" "$published/system" "$run"/
 cp "$published/DEM/ridge.h5" "$published/DEM/in.ridge" "$published/DEM/platen.stl" "$run/DEM/"
-sed -i "s/^    inertiaScaling  1; /    inertiaScaling  $factor; /" "$run/constant/ridgeProperties"
-grep -q "^    inertiaScaling  $factor; " "$run/constant/ridgeProperties" \
-    || { echo "fullPunch.sh: could not set test.inertiaScaling in $run/constant/ridgeProperties" >&2; exit 1; }
-echo "maxKineticToWorkRatio 1e30;    // fullPunch.sh: measured, not refused" >> "$run/system/controlDict"
+# the factor, and the limit lifted (measured, not refused), with iceCases' dictionary editing
+PYTHONPATH="$top/postProcessing" /usr/bin/python3 -c "import sys, iceCases
+run, factor = sys.argv[1:]
+iceCases.set_entry(run + '/constant/ridgeProperties', 'test.inertiaScaling', factor)
+iceCases.add_entry(run + '/system/controlDict', 'maxKineticToWorkRatio', '1e30')" "$run" "$factor"
 /usr/bin/time -v -o "$run/time.txt" mpirun -np 2 "$top/build/demModels/ridgeDEM" -case "$run" -stage all \
     > "$run/log.ridgeDEM" 2>&1
 cp "$run/postProcessing/summary.json" "$here/results/fullPunch_inertia${factor}_2ranks_summary.json"
