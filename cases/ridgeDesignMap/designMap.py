@@ -436,7 +436,8 @@ def smoke(args):
 def resolution(args):
     folder = os.path.join(TOP, "cases", "ridgeFlexure", "results")
     quick = {r["run"]: r for r in read_table(os.path.join(folder, "ridgeMatrix_quick.csv"))}
-    default = {r["run"]: r for r in read_table(os.path.join(folder, "ridgeMatrix_default.csv"))}
+    # the default resolution on the quick matrix's kind of keel (softened), so that only the resolution differs
+    default = {r["run"]: r for r in read_table(os.path.join(folder, "ridgeMatrix_default_softened.csv"))}
 
     def share(r):
         alone = number(r["layer_alone_kN"])
@@ -466,7 +467,7 @@ def resolution(args):
     os.makedirs(out, exist_ok=True)
     iceCases.write_atomically(os.path.join(out, "resolution.md"), text)
     iceCases.write_readme_table(os.path.join(HERE, "README.md"), "resolution check", "designMap.py resolution",
-                                "../ridgeFlexure/results/ridgeMatrix_quick.csv, ridgeMatrix_default.csv", text)
+                                "../ridgeFlexure/results/ridgeMatrix_quick.csv, ridgeMatrix_default_softened.csv", text)
     print(summary)
     return 0
 

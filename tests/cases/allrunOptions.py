@@ -61,7 +61,8 @@ SCRIPTS = {
         [[], ["-smoke"], ["-np", "2", "-case", "."], ["-publish"]]),
     "cases/freezeBondShear/Allrun": ([], [[], ["-smoke"], ["-publish"]]),
     "cases/freezeBondTension/Allrun": ([], [[], ["-np", "1", "-smoke"], ["-publish"]]),
-    "cases/keelBond/Allrun": ([(["-resume", "1"], "1")], [[], ["-np", "1", "-resume", "-smoke"], ["-publish"]]),
+    "cases/keelBond/Allrun": ([(["-resume", "1"], "1"), (["-keels", "iceStiff", "-smoke"], "-keels"), (["-keels", "x"], "-keels")],
+                              [[], ["-np", "1", "-resume", "-smoke"], ["-publish"], ["-keels", "softened", "-publish"]]),
     "cases/packedBed/Allrun": (
         [(["-only", "x"], "-only"), (["-only"], "-only"), (["-case", "-smoke"], "-case")],
         [[], ["-smoke"], ["-only", "fluidisation", "-np", "2"], ["-only", "all"], ["-only", "fixed", "-publish"]]),
@@ -71,10 +72,11 @@ SCRIPTS = {
          (["-runs"], "-runs"), (["-water", "x"], "-water"), (["-smoke", "-water", "cfd"], "-smoke"),
          (["-speed", "0"], "-speed"), (["-speed", "0.1m/s"], "-speed"), (["-speed", "0.1", "-publish"], "-speed"),
          (["-speed", "0.1", "-water", "cfd"], "-speed"), (["-resolution", "fine"], "-resolution"),
-         (["-resolution"], "-resolution")],
+         (["-resolution"], "-resolution"), (["-keels", "iceStiff", "-quick"], "-keels"),
+         (["-keels", "iceStiff", "-water", "vof"], "-keels")],
         [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-runs", "6", "-speed", "0.05"],
          ["-resolution", "default", "-runs", "6", "-speed", "0.025", "-jobs", "1"],
-         ["-quick", "-publish"],
+         ["-quick", "-publish"], ["-keels", "softened", "-publish"], ["-keels", "softened", "-smoke"],
          ["-water", "cfd", "-runs", "6,14", "-publish"]]),
     "cases/ridgeDesignMap/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-data"], "-data"), (["-data", "foo=bar.csv"], "-data"),

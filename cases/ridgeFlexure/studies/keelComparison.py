@@ -1,12 +1,13 @@
 #!/usr/bin/python3
-"""The ridge matrix on the case's softened keels beside the matrix on the keels compacted at the
-ice's stiffness (./Allrun -keels iceStiff): what each ridge was bonded under and what it carried.
+"""The ridge matrix on the softened keels (./Allrun -keels softened) beside the matrix on the keels
+compacted at the ice's stiffness (the case's since 2026-12-07): what each ridge was bonded under and
+what it carried.
 
 For every run of the default matrix finished in both runs/default/ and runs/default-iceStiff/:
 the load on the floor plate when the bonds were made, the freeze-bonds (all, and between layer and
 keel), the mean and largest confinement of the freeze-bonds (the contact force on the bond's real
 area, ridgeDEM's log), the failure force and the keel's contribution (failure force less the layer
-alone's), from the two published tables (results/ridgeMatrix_default.csv and
+alone's), from the two published tables (results/ridgeMatrix_default_softened.csv and
 results/ridgeMatrix_default_iceStiff.csv).
 
 Writes results/ridgeMatrix_keelComparison.csv and .md and the README section
@@ -25,7 +26,7 @@ CASE = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(CASE)), "postProcessing"))
 import iceCases  # noqa: E402
 
-SETS = (("softened", "default", "ridgeMatrix_default.csv"),
+SETS = (("softened", "default", "ridgeMatrix_default_softened.csv"),
         ("iceStiff", "default-iceStiff", "ridgeMatrix_default_iceStiff.csv"))
 NUMBER = r"([-+0-9.eE]+)"
 
@@ -95,8 +96,8 @@ def main():
     case = os.path.abspath(parser.parse_args().case)
     table = rows(case)
     if not table:
-        sys.exit("keelComparison: no run published in both results/ridgeMatrix_default.csv and "
-                 "results/ridgeMatrix_default_iceStiff.csv (./Allrun -keels iceStiff, then -publish)")
+        sys.exit("keelComparison: no run published in both results/ridgeMatrix_default_softened.csv and "
+                 "results/ridgeMatrix_default_iceStiff.csv (./Allrun -keels softened and ./Allrun, each then -publish)")
     base = os.path.join(case, "results", "ridgeMatrix_keelComparison")
     columns = list(table[0].keys())
     lines = [",".join(columns)] + [",".join('"%s"' % r[c] if "mode" in c else str(r[c]) for c in columns) for r in table]
@@ -106,7 +107,7 @@ def main():
              ("freeze_bonds", "freeze-bonds"), ("layer_keel_bonds", "of them layer-keel"),
              ("layer_rise_mm", "layer rose [mm]"), ("depth_m", "depth [m]"), ("failure_force_kN", "failure force [kN]"),
              ("keel_contribution_kN", "keel's contribution [kN]"), ("failure_mode", "mode")]
-    md = ["From `results/ridgeMatrix_default.csv` (softened keels) and `results/ridgeMatrix_default_iceStiff.csv`"
+    md = ["From `results/ridgeMatrix_default_softened.csv` (softened keels) and `results/ridgeMatrix_default_iceStiff.csv`"
           " (keels at the ice's stiffness), and what each run's bonds were made under (its"
           " `postProcessing/assembly.json`, or the assembly lines of its log). Each cell: softened / iceStiff.",
           "", "| " + " | ".join(label for _, label in shown) + " |", "|" + "---|" * len(shown)]

@@ -2,14 +2,16 @@
 """The 16-run ridge matrix of ../shared/data/ridgeMatrix.csv (scenes.md section 7).
 
 Each run is a copy of the ridge case (constant/, system/, DEM/) under
-runs/<resolution>/, with its keel, consolidated-layer thickness and
+runs/<resolution>/ (runs/default-iceStiff/ on the ice-stiff keels, the default
+resolution's default), with its keel, consolidated-layer thickness and
 freeze-bond set set in its dictionaries. Runs go in parallel (one rank each,
 --jobs at a time), a finished run (summary.json written) is skipped, and a
 killed one continues from its checkpoint, both only when the folder was made
 from the same inputs (madeFrom; a folder of other inputs is made again), so
 the command can simply be run again. Each run is then classified by
-postProcessing/failureAnalysis.py, and the table (runs/<resolution>/ridgeMatrix_<resolution>.csv and .md) and the plot
-(.png) of every finished run in runs/<resolution>/ are written there.
+postProcessing/failureAnalysis.py, and the table (ridgeMatrix_<resolution>.csv and .md; at the
+default resolution ridgeMatrix_default_<keels>) and the plot (.png) of every finished run in the
+runs folder are written there.
 
 A run the application stopped (e.g. a particle past maxParticleSpeed: a blow-up)
 after its load had fallen to 90 % of its peak or less has failed before it
@@ -68,11 +70,13 @@ QUICK = {
 # go to runs/<resolution>-speed<V>/, apart from the matrix at the resolution's own speed.
 SPEED = None
 
-# The keels of this invocation (--keels): softened, the case's own (compacted at the settling's
-# softened contacts to 0.35, the layer held where it was pressed while the contacts stiffen), or
-# iceStiff (keels/keel<depth>iceStiff, compacted at the ice's stiffness to 0.45; the layer rides the
-# stiffening keel as a free rigid sheet): README "Keels at the ice's stiffness". Its runs go to
-# runs/<resolution>-iceStiff/; the layers alone, which have no keel, are the resolution's own.
+# The keels of this invocation (--keels): iceStiff, the case's at the default resolution since
+# 2026-12-07 (keels/keel<depth>iceStiff, compacted at the ice's stiffness to 0.45; the layer rides the
+# stiffening keel as a free rigid sheet; its runs go to runs/<resolution>-iceStiff/), or softened, the
+# quick and smoke resolutions' and the water-level, support and rate studies' (keels/keel<depth>,
+# compacted at the settling's softened contacts to 0.35, the layer held where it was pressed while the
+# contacts stiffen; runs/<resolution>/): README "Keels at the ice's stiffness". The layers alone, which
+# have no keel, are the resolution's own. The module's default stays softened for those studies.
 KEEL_SETS = {
     "softened": {"suffix": "", "entries": {}},
     "iceStiff": {"suffix": "iceStiff", "entries": {"assembly.youngsModulus": 1.95e8, "assembly.layerHold": "balanced"}},
@@ -112,10 +116,17 @@ def runs_folder(resolution, alone=False):
     return os.path.join(CASE, "runs", resolution + ("-speed%g" % SPEED if SPEED else "") + keels)
 
 
+def default_keels(resolution):
+    """The keels a matrix of this resolution runs on when --keels is not given: the ice-stiff ones
+    at the default resolution, the softened ones at the quick and smoke resolutions (their thin keels
+    jam at the ice's stiffness)."""
+    return "iceStiff" if resolution == "default" else "softened"
+
+
 def label(resolution):
-    """The matrix's name in its table's file names and README section: the resolution, and the keels
-    where they are not the case's own."""
-    return resolution + ("" if KEELS == "softened" else "_" + KEELS)
+    """The matrix's name in its table's file names and README section: the resolution, and at the
+    default resolution (the one with two kinds of keel) the keels."""
+    return resolution + ("_" + KEELS if resolution == "default" else "")
 
 
 def run_dir(run, resolution):
@@ -399,7 +410,8 @@ def readme_table(rows, record):
              "(%s, wall times per run on 1 rank, runs side by side); sum of run wall times %.0f s. "
              "Generated from `results/ridgeMatrix_%s.csv`."
              % ((" -quick" if record["resolution"] == "quick" else "")
-                + (" -keels " + record["keels"] if record.get("keels", "softened") != "softened" else ""),
+                + (" -keels " + record["keels"]
+                   if record.get("keels", "softened") != default_keels(record["resolution"]) else ""),
                 record["revision"], record["published"],
                 finished[0], finished[-1], record["machine"], sum(r["wall_s"] for r in record["runs"]),
                 label(record["resolution"])), "",
@@ -448,13 +460,14 @@ def main():
     parser.add_argument("--speed", type=iceCases.positive_number,
                         help="platen speed in m/s instead of the resolution's own (quick: 0.2; default: the "
                              "case's test.speed); the runs go to runs/<resolution>-speed<V>/")
-    parser.add_argument("--keels", choices=sorted(KEEL_SETS), default="softened",
-                        help="softened (the case's keels) or iceStiff (keels/keel<depth>iceStiff, default "
-                             "resolution only); the runs go to runs/<resolution>-iceStiff/")
+    parser.add_argument("--keels", choices=sorted(KEEL_SETS),
+                        help="iceStiff (keels/keel<depth>iceStiff, the default resolution's default; the runs go "
+                             "to runs/<resolution>-iceStiff/) or softened (keels/keel<depth>, the quick and smoke "
+                             "resolutions' default; runs/<resolution>/)")
     args = parser.parse_args()
     global SPEED, KEELS
     SPEED = args.speed
-    KEELS = args.keels
+    KEELS = args.keels or default_keels(args.resolution)
     if KEELS != "softened" and args.resolution != "default":
         parser.error("argument --keels: %s keels are built at the default resolution only" % KEELS)
     if args.publish and SPEED:
