@@ -57,7 +57,7 @@ class KeelComparisonTest(unittest.TestCase):
         return subprocess.run([sys.executable, TOOL, "--case", self.case], capture_output=True, text=True)
 
     def test_joins_the_matrices_and_reads_the_assembly(self):
-        self.publish("ridgeMatrix_default.csv", [
+        self.publish("ridgeMatrix_default_softened.csv", [
             (1, 0.5, "2min", 0, 0.55, 1.926, 0.0, 1.926, "undetermined"),
             (2, 0.5, "2min", 10, 0.62, 7.261, 4.936, 2.325, "mixed; CL 66%"),
             (3, 0.5, "2min", 15, 0.66, 14.18, 12.0, 2.18, "CL flexure")])
@@ -92,7 +92,7 @@ class KeelComparisonTest(unittest.TestCase):
 
     def test_a_layer_that_sank_reads_alike_in_both_spellings(self):
         rows = [(1, 0.5, "2min", 10, 0.6, 7.0, 4.9, 2.1, "mixed")]
-        self.publish("ridgeMatrix_default.csv", rows)
+        self.publish("ridgeMatrix_default_softened.csv", rows)
         self.publish("ridgeMatrix_default_iceStiff.csv", rows)
         self.log("default", "run01_keel0.5_2min_CL10", assembly_log(300, 700, 70, 20, 500, "moved 2.5 mm down"))
         self.log("default-iceStiff", "run01_keel0.5_2min_CL10", assembly_log(300, 700, 70, 20, 500, "moved 0.75 mm up"))
@@ -103,7 +103,7 @@ class KeelComparisonTest(unittest.TestCase):
 
     def test_a_resumed_run_reads_its_assembly_json(self):
         rows = [(1, 1.0, "ultimate", 10, 1.25, 16.22, 4.936, 11.284, "mixed")]
-        self.publish("ridgeMatrix_default.csv", rows)
+        self.publish("ridgeMatrix_default_softened.csv", rows)
         self.publish("ridgeMatrix_default_iceStiff.csv", rows)
         self.log("default", "run01_keel1.0_ultimate_CL10", assembly_log(18172, 1412, 67, 1517.2, 44000))
         resumed = "run01_keel1.0_ultimate_CL10"
@@ -122,7 +122,7 @@ class KeelComparisonTest(unittest.TestCase):
         self.assertEqual(row["floor_plate_kPa_softened"], "18.172")  # the log, where there is no assembly.json
 
     def test_nothing_published_in_both_stops_with_a_message(self):
-        self.publish("ridgeMatrix_default.csv", [(1, 0.5, "2min", 0, 0.55, 1.9, 0.0, 1.9, "x")])
+        self.publish("ridgeMatrix_default_softened.csv", [(1, 0.5, "2min", 0, 0.55, 1.9, 0.0, 1.9, "x")])
         self.publish("ridgeMatrix_default_iceStiff.csv", [(2, 0.5, "2min", 10, 0.6, 7.5, 4.9, 2.6, "x")])
         result = self.run_tool()
         self.assertNotEqual(result.returncode, 0)
