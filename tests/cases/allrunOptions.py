@@ -73,10 +73,10 @@ SCRIPTS = {
          (["-speed", "0"], "-speed"), (["-speed", "0.1m/s"], "-speed"), (["-speed", "0.1", "-publish"], "-speed"),
          (["-speed", "0.1", "-water", "cfd"], "-speed"), (["-resolution", "fine"], "-resolution"),
          (["-resolution"], "-resolution"), (["-keels", "iceStiff", "-quick"], "-keels"),
-         (["-keels", "iceStiff", "-water", "vof"], "-keels")],
+         (["-keels", "iceStiff", "-quick", "-water", "vof"], "-keels")],
         [[], ["-smoke"], ["-quick", "-jobs", "2", "-runs", "1,2,5"], ["-quick", "-runs", "6", "-speed", "0.05"],
          ["-resolution", "default", "-runs", "6", "-speed", "0.025", "-jobs", "1"],
-         ["-quick", "-publish"], ["-keels", "softened", "-publish"], ["-keels", "softened", "-smoke"],
+         ["-quick", "-publish"], ["-keels", "softened", "-publish"], ["-keels", "softened", "-smoke"], ["-keels", "iceStiff", "-water", "vof", "-runs", "6"],
          ["-water", "cfd", "-runs", "6,14", "-publish"]]),
     "cases/ridgeDesignMap/Allrun": (
         [(["-jobs", "0"], "-jobs"), (["-data"], "-data"), (["-data", "foo=bar.csv"], "-data"),

@@ -20,8 +20,13 @@ the README's table: the levels of --levels, which must be finished for every run
 resolved level finished for every run (so publishing vof keeps the cfd rows where those runs are
 here).
 
-Usage: studies/waterLevels.py [--resolution default|quick] [--runs 6,14] [--levels cfd,vof] [--jobs N]
-                              [--publish]
+--keels iceStiff (default resolution only) loads the runs on the keels compacted at the ice's
+stiffness (ridgeMatrix's KEEL_SETS; the case's default matrix since 2026-12-07) instead of the
+softened ones the published levels were made on: runs/<resolution>-<level>-iceStiff/, tables
+waterLevels_<resolution>_iceStiff.
+
+Usage: studies/waterLevels.py [--resolution default|quick] [--keels softened|iceStiff] [--runs 6,14]
+                              [--levels cfd,vof] [--jobs N] [--publish]
 """
 import argparse
 import concurrent.futures
@@ -40,8 +45,13 @@ os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")   # OpenFOAM's ut
 APPLICATIONS = {"cfd": "icePunchFoam", "vof": "icePunchInterFoam"}
 
 
+def keels_suffix():
+    return "" if ridgeMatrix.KEELS == "softened" else "-" + ridgeMatrix.KEELS
+
+
 def level_dir(run, resolution, level):
-    return os.path.join(CASE, "runs", f"{resolution}-{level}", os.path.basename(ridgeMatrix.run_dir(run, resolution)))
+    return os.path.join(CASE, "runs", f"{resolution}-{level}{keels_suffix()}",
+                        os.path.basename(ridgeMatrix.run_dir(run, resolution)))
 
 
 def prepare_resolved(run, resolution, level, folder):
@@ -130,7 +140,8 @@ def plot(runs, resolution, levels, path):
         ax.set_ylabel("force (kN)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle(f"Ridge flexure at the {', '.join(['hydrostatic', *levels])} levels ({resolution} resolution)")
+    keels = "" if ridgeMatrix.KEELS == "softened" else f", {ridgeMatrix.KEELS} keels"
+    fig.suptitle(f"Ridge flexure at the {', '.join(['hydrostatic', *levels])} levels ({resolution} resolution{keels})")
     iceCases.save_figure(fig, path)
 
 
@@ -140,10 +151,15 @@ def main():
     parser.add_argument("--runs", type=iceCases.comma_list(iceCases.whole_number(1)), default="6,14")
     parser.add_argument("--levels", type=iceCases.comma_list(iceCases.choice(tuple(APPLICATIONS))), default="cfd",
                         help="the resolved levels to run (default cfd)")
+    parser.add_argument("--keels", choices=sorted(ridgeMatrix.KEEL_SETS), default="softened",
+                        help="softened (the keels the published levels were made on) or iceStiff (default resolution)")
     parser.add_argument("--jobs", type=iceCases.whole_number(1), default=max(1, min(2, os.cpu_count() or 1)))
     parser.add_argument("--publish", action="store_true",
                         help="run nothing; copy the finished runs' table and plot into results/ and the README")
     args = parser.parse_args()
+    if args.keels != "softened" and args.resolution != "default":
+        parser.error(f"argument --keels: {args.keels} keels are built at the default resolution only")
+    ridgeMatrix.KEELS = args.keels
     matrix = {r["run"]: r for r in ridgeMatrix.matrix()}
     unknown = [n for n in args.runs if n not in matrix]
     if unknown:
@@ -165,15 +181,19 @@ def main():
                 future.result()
     rows = [row(run, level, target) for run in runs for level, target in folders(run, args.resolution, levels).items()]
     csv_text, md = table(rows)
-    folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs", "waterLevels_" + args.resolution)
+    name = "waterLevels_" + args.resolution + keels_suffix().replace("-", "_")
+    folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs", name)
     os.makedirs(folder, exist_ok=True)
-    base = os.path.join(folder, "waterLevels_" + args.resolution)
+    base = os.path.join(folder, name)
     iceCases.write_atomically(base + ".csv", csv_text)
     iceCases.write_atomically(base + ".md", md)
     plot(runs, args.resolution, levels, base + ".png")
     if args.publish:
-        iceCases.write_readme_table(os.path.join(CASE, "README.md"), "ridge water table",
-                                    "studies/waterLevels.py --publish", f"results/waterLevels_{args.resolution}.csv", md)
+        softened = args.keels == "softened"
+        iceCases.write_readme_table(os.path.join(CASE, "README.md"),
+                                    "ridge water table" + ("" if softened else " " + args.keels),
+                                    "studies/waterLevels.py " + ("" if softened else "--keels " + args.keels + " ") + "--publish",
+                                    f"results/{name}.csv", md)
     print(md, end="")
 
 
