@@ -111,8 +111,19 @@ def layers_alone(runs):
     return [{"run": 0, "keel": "none", "set": layer_set, "cl_cm": cm, "alone": True} for cm in thicknesses]
 
 
+def keels_suffix():
+    """What the keels of this invocation add to a runs folder's name: nothing for the softened ones."""
+    return "" if KEELS == "softened" else "-" + KEELS
+
+
+def refuse_keels_at(resolution, parser):
+    """Only the default resolution has keels other than the softened ones."""
+    if KEELS != "softened" and resolution != "default":
+        parser.error("argument --keels: %s keels are built at the default resolution only" % KEELS)
+
+
 def runs_folder(resolution, alone=False):
-    keels = "" if KEELS == "softened" or alone else "-" + KEELS
+    keels = "" if alone else keels_suffix()
     return os.path.join(CASE, "runs", resolution + ("-speed%g" % SPEED if SPEED else "") + keels)
 
 
@@ -468,8 +479,7 @@ def main():
     global SPEED, KEELS
     SPEED = args.speed
     KEELS = args.keels or default_keels(args.resolution)
-    if KEELS != "softened" and args.resolution != "default":
-        parser.error("argument --keels: %s keels are built at the default resolution only" % KEELS)
+    refuse_keels_at(args.resolution, parser)
     if args.publish and SPEED:
         parser.error("argument --publish: publishes the matrix at the resolution's own speed (not with --speed)")
 

@@ -45,12 +45,8 @@ os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")   # OpenFOAM's ut
 APPLICATIONS = {"cfd": "icePunchFoam", "vof": "icePunchInterFoam"}
 
 
-def keels_suffix():
-    return "" if ridgeMatrix.KEELS == "softened" else "-" + ridgeMatrix.KEELS
-
-
 def level_dir(run, resolution, level):
-    return os.path.join(CASE, "runs", f"{resolution}-{level}{keels_suffix()}",
+    return os.path.join(CASE, "runs", f"{resolution}-{level}{ridgeMatrix.keels_suffix()}",
                         os.path.basename(ridgeMatrix.run_dir(run, resolution)))
 
 
@@ -157,9 +153,8 @@ def main():
     parser.add_argument("--publish", action="store_true",
                         help="run nothing; copy the finished runs' table and plot into results/ and the README")
     args = parser.parse_args()
-    if args.keels != "softened" and args.resolution != "default":
-        parser.error(f"argument --keels: {args.keels} keels are built at the default resolution only")
     ridgeMatrix.KEELS = args.keels
+    ridgeMatrix.refuse_keels_at(args.resolution, parser)
     matrix = {r["run"]: r for r in ridgeMatrix.matrix()}
     unknown = [n for n in args.runs if n not in matrix]
     if unknown:
@@ -181,7 +176,7 @@ def main():
                 future.result()
     rows = [row(run, level, target) for run in runs for level, target in folders(run, args.resolution, levels).items()]
     csv_text, md = table(rows)
-    name = "waterLevels_" + args.resolution + keels_suffix().replace("-", "_")
+    name = "waterLevels_" + args.resolution + ridgeMatrix.keels_suffix().replace("-", "_")
     folder = os.path.join(CASE, "results") if args.publish else os.path.join(CASE, "runs", name)
     os.makedirs(folder, exist_ok=True)
     base = os.path.join(folder, name)
