@@ -8,7 +8,8 @@ Three scenes, each on one rank, measured on the stepping loop only (set-up exclu
   (iceBeamDEM -particles 13000 -steps N, the same run as the beam benchmark);
 - the rubble punch: a window of --travel of platen travel from cases/rubblePunch/runs/cuboid (its
   saved ridge; the same window as studies/rankSpeedup and studies/waterLevels);
-- ridge run 6: the same window from cases/ridgeFlexure/runs/default/run06_keel0.5_4h_CL10.
+- ridge run 6: the same window from cases/ridgeFlexure/runs/default/run06_keel0.5_4h_CL10 (the softened
+  keel's: ./Allrun -keels softened -runs 6).
 
 "Alone" runs one scene at a time; "side by side" runs two copies of the same scene at once, one on
 each core, as the ridge matrix and the punch's keels run (each copy's rate is listed, the row gives
