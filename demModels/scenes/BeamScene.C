@@ -126,17 +126,7 @@ BeamSceneSettings BeamSceneSettings::read(const std::string& caseDir, const Beam
         s.fieldHalfLoadTravel = positive(field, "halfLoadTravelAfterPeak", 0, true);
     }
 
-    const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
-    control.checkKeys
-    ({
-        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
-    });
-    s.loading.readControl(control);
-    s.loading.readInertiaScaling(props);
-    s.loading.speed = s.platenSpeed;
-    s.loading.initialGap = s.initialGap;
-    s.loading.fixedSteps = options.steps;
+    s.loading = PlatenLoadingControl::forBeamTest(caseDir, props, s.platenSpeed, s.initialGap, options.steps);
     return s;
 }
 

@@ -95,6 +95,31 @@ void PlatenLoadingControl::readInertiaScaling(const Dictionary& d, const std::st
 }
 
 
+PlatenLoadingControl PlatenLoadingControl::forBeamTest
+(
+    const std::string& caseDir,
+    const Dictionary& sceneProperties,
+    double speed,
+    double initialGap,
+    long fixedSteps
+)
+{
+    const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
+    control.checkKeys
+    ({
+        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
+        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
+    });
+    PlatenLoadingControl loading;
+    loading.readControl(control);
+    loading.readInertiaScaling(sceneProperties);
+    loading.speed = speed;
+    loading.initialGap = initialGap;
+    loading.fixedSteps = fixedSteps;
+    return loading;
+}
+
+
 double PlatenLoadingControl::travelAt(double elapsed) const
 {
     if (rampTravel <= 0.0)

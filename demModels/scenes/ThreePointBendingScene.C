@@ -164,17 +164,7 @@ ThreePointBendingSettings ThreePointBendingSettings::read
     s.targetCoefficient = positiveEntry(target, "coefficient");
     s.targetExponent = target.getScalar("exponent");
 
-    const Dictionary control = Dictionary::readFile(caseDir + "/system/controlDict");
-    control.checkKeys
-    ({
-        "application", "maxTravel", "stopAfterHalfLoad", "travelAfterHalfLoad",
-        "sampleInterval", "writeInterval", "checkpointInterval", "maxKineticToWorkRatio", "vtkFormat"
-    });
-    s.loading.readControl(control);
-    s.loading.readInertiaScaling(props);
-    s.loading.speed = s.platenSpeed;
-    s.loading.initialGap = s.initialGap;
-    s.loading.fixedSteps = options.steps;
+    s.loading = PlatenLoadingControl::forBeamTest(caseDir, props, s.platenSpeed, s.initialGap, options.steps);
     return s;
 }
 

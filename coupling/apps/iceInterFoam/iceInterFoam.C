@@ -56,6 +56,7 @@ namespace
 {
 
 #include "particleOutput.H"
+#include "bondedIceOutput.H"
 #include "vofChecks.H"
 
 } // namespace
@@ -166,27 +167,13 @@ int main(int argc, char *argv[])
         particles = dem.gatherNear(coupling.particleRegion());
         coupling.updateFluidFraction(particles);
         coupling.updateExchange(particles, U);
-        if (bondedIce)
-        {
-            demModelsAction([&]() { bondedIce->collectBreaks(lmp.time()); });
-        }
+        bondedIceAfterAdvance(bondedIce.get(), lmp.time(), runTime.writeTime(), bondHistory);
         if (runTime.writeTime())
         {
             output.particlesVtk(runTime, dem);
-            if (bondedIce)
-            {
-                bondedIce->writeHistory(bondHistory);
-                Info<< "Bonds: " << bondedIce->intactBonds() << " intact, "
-                    << bondedIce->brokenBonds() << " broken" << nl << endl;
-            }
         }
     }
-    if (bondedIce)
-    {
-        bondedIce->writeHistory(bondHistory);
-        Info<< "Bonds at the end: " << bondedIce->intactBonds() << " intact of "
-            << bondedIce->initialBonds().totalBonds << ", " << bondedIce->brokenBonds() << " broken" << endl;
-    }
+    bondedIceAtEnd(bondedIce.get(), bondHistory);
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
     Info<< "Water volume " << surface.waterVolume(alpha1, eps) << " m^3 ("
