@@ -131,6 +131,18 @@ class ForceCurvesTest(unittest.TestCase):
         self.assertNotIn("Traceback", result.stderr)
         self.assertFalse(os.path.exists(os.path.join(self.case, "results", "earlyStop.csv")))
 
+    def test_another_speed_reads_its_own_runs_and_is_not_published(self):
+        self.add_run("default-speed0.025-iceStiff", "run01_keel0.5_2min_CL0", rise_and_fall(300, 2000.0, 0.6, LAST + 1))
+        result = self.run_tool("--speed", "0.025")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("--speed: without --publish", result.stderr)
+        result = subprocess.run([sys.executable, TOOL, "--case", self.case, "--speed", "0.025"],
+                                capture_output=True, text=True)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(self.case, "runs", "forceCurves-speed0.025", "forceSpikes.csv"), newline="") as f:
+            self.assertEqual([r["run"] for r in csv.DictReader(f)], ["run01"])
+        self.assertFalse(os.path.exists(os.path.join(self.case, "results", "forceSpikes.csv")))
+
     def test_no_finished_run(self):
         self.add_run("default-iceStiff", "run01_keel0.5_2min_CL0", [1.0, 2.0], finished=False)
         result = self.run_tool()

@@ -20,11 +20,11 @@ one sample every 0.2 mm of platen travel), without running anything:
    A peak both of whose neighbours are below SPIKE of it is marked a spike.
 
 The runs: the default matrix's on the keels of --keels (runs/default-iceStiff/, the case's;
-softened: runs/default/) and the layers alone (runs/default/layerAlone_CL*), finished ones only.
-Writes runs/forceCurves/; --publish into results/ (earlyStop.*, forceSpikes.*) and the README
+softened: runs/default/) and the layers alone (runs/default/layerAlone_CL*), finished ones only;
+with --speed V those of ./Allrun -speed V. Writes runs/forceCurves[-speedV]/; --publish into results/ (earlyStop.*, forceSpikes.*) and the README
 sections "ridge early stop" and "ridge force spikes".
 
-usage: studies/forceCurves.py [--case DIR] [--keels iceStiff|softened] [--fractions 0.5,0.6,0.7,0.8,0.9] [--publish]
+usage: studies/forceCurves.py [--case DIR] [--keels iceStiff|softened] [--speed V] [--fractions 0.5,0.6,0.7,0.8,0.9] [--publish]
   (DIR: the ridgeFlexure case, this script's by default)"""
 import argparse
 import glob
@@ -133,10 +133,15 @@ def main():
     parser.add_argument("--case", default=CASE, help="the ridgeFlexure case (default: this script's)")
     parser.add_argument("--keels", choices=sorted(ridgeMatrix.KEEL_SETS), default="iceStiff",
                         help="the default matrix's runs on these keels (runs/default-iceStiff or runs/default)")
+    parser.add_argument("--speed", type=iceCases.positive_number, default=None,
+                        help="the runs of ./Allrun -speed V (runs/default-speedV-...; not published)")
     parser.add_argument("--fractions", type=iceCases.comma_list(float), default=[0.5, 0.6, 0.7, 0.8, 0.9])
     parser.add_argument("--publish", action="store_true", help="write results/ and the README sections")
     args = parser.parse_args()
+    if args.speed and args.publish:
+        parser.error("--speed: without --publish (the published tables are of the case's own speed)")
     ridgeMatrix.KEELS = args.keels
+    ridgeMatrix.SPEED = args.speed
     ridgeMatrix.CASE = case = os.path.abspath(args.case)
     runs = ridgeMatrix.runs_folder("default")
     alone = ridgeMatrix.runs_folder("default", alone=True)
@@ -146,7 +151,8 @@ def main():
         sys.exit(f"forceCurves.py: no finished run in {runs} or {alone}")
     curves = {os.path.basename(f): iceCases.curve(f) for f in folders}
     outputs = {"earlyStop": early_stop_table(curves, args.fractions), "forceSpikes": spike_table(curves)}
-    folder = os.path.join(case, "results") if args.publish else os.path.join(case, "runs", "forceCurves")
+    folder = os.path.join(case, "results") if args.publish else os.path.join(
+        case, "runs", "forceCurves" + ("-speed%g" % args.speed if args.speed else ""))
     os.makedirs(folder, exist_ok=True)
     for stem, (rows, md) in outputs.items():
         iceCases.write_atomically(os.path.join(folder, stem + ".csv"), csv_text(rows))
