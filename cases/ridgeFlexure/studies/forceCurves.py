@@ -37,10 +37,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(CASE)), "postPro
 import iceCases  # noqa: E402
 sys.path.insert(0, HERE)
 import ridgeMatrix  # noqa: E402
+import supportStudy  # noqa: E402
 
 MIN_TRAVEL = 0.03          # system/controlDict minTravel
 MAX_TRAVEL = 0.1           # system/controlDict maxTravel
 TRAVEL_AFTER = 0.005       # system/controlDict travelAfterHalfLoad
+SAMPLE_TRAVEL = 2e-4      # m of travel between samples (system/controlDict sampleInterval)
 SPIKE = 0.8                # a peak whose both neighbouring samples are below this share of it
 WINDOWS = (3, 5, 11)       # samples of the running means
 
@@ -94,9 +96,10 @@ def early_stop_table(curves, fractions):
     return rows, "\n".join(md) + "\n"
 
 
-def running_mean_peak(force, window):
-    half = window // 2
-    return max(sum(force[i - half:i + half + 1]) / window for i in range(half, len(force) - half))
+def running_mean_peak(curve, window):
+    """The largest mean over `window` samples (odd): supportStudy's mean over +- half a window of
+    travel, the half-width half a sample past the outermost sample's 0.2 mm steps."""
+    return supportStudy.smoothed_peak(curve, half=(window // 2 + 0.5) * SAMPLE_TRAVEL)
 
 
 def spike_table(curves):
@@ -110,7 +113,7 @@ def spike_table(curves):
                "neighbours_of_peak": " / ".join(f"{n:.2f}" for n in neighbours),
                "kinetic_at_peak_over_median": round(c["kineticEnergy"][i] / kinetic[len(kinetic) // 2], 1)}
         for w in WINDOWS:
-            row[f"running_mean_{w}_kN"] = round(running_mean_peak(f, w) * 1e-3, 3)
+            row[f"running_mean_{w}_kN"] = round(running_mean_peak(c, w) * 1e-3, 3)
         row["spike"] = "yes" if all(n < SPIKE for n in neighbours) else "no"
         rows.append(row)
     md = ["| run | largest force [kN] at [mm] | its neighbours (of it) | kinetic energy there / run's median | "
