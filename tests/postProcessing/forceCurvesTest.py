@@ -56,6 +56,10 @@ class ForceCurvesTest(unittest.TestCase):
                                  (kinetic or {}).get(i, 1.0)])
         with open(os.path.join(path, "summary.json"), "w") as f:
             json.dump({"complete": finished}, f)
+        # the stop rule's entries, as the case's (the script reads each run's own)
+        os.makedirs(os.path.join(path, "..", "system"))
+        with open(os.path.join(path, "..", "system", "controlDict"), "w") as f:
+            f.write(f"maxTravel 0.1;\nminTravel 0.03;  // m\ntravelAfterHalfLoad 0.005;\nsampleInterval {SAMPLE};\n")
 
     def stopped_run(self, name, peak_at, fall_samples):
         """A run the half-load rule stopped: rising to its peak, falling below half within

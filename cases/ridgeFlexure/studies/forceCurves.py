@@ -27,7 +27,9 @@ sections "ridge early stop" and "ridge force spikes".
 usage: studies/forceCurves.py [--case DIR] [--keels iceStiff|softened] [--speed V] [--fractions 0.5,0.6,0.7,0.8,0.9] [--publish]
   (DIR: the ridgeFlexure case, this script's by default)"""
 import argparse
+import csv
 import glob
+import io
 import os
 import sys
 
@@ -39,17 +41,30 @@ sys.path.insert(0, HERE)
 import ridgeMatrix  # noqa: E402
 import supportStudy  # noqa: E402
 
-MIN_TRAVEL = 0.03          # system/controlDict minTravel
-MAX_TRAVEL = 0.1           # system/controlDict maxTravel
-TRAVEL_AFTER = 0.005       # system/controlDict travelAfterHalfLoad
-SAMPLE_TRAVEL = 2e-4      # m of travel between samples (system/controlDict sampleInterval)
+# The stop rule's entries of a run's system/controlDict and PlatenLoadingControl::readControl's
+# defaults where the file does not write them (maxTravel it must write).
+CONTROL_DEFAULTS = {"minTravel": 0.0, "travelAfterHalfLoad": 0.005, "sampleInterval": 2e-4}
 SPIKE = 0.8                # a peak whose both neighbouring samples are below this share of it
 WINDOWS = (3, 5, 11)       # samples of the running means
 
 
-def stop_index(c, fraction):
-    """The sample a run would stop at (PlatenLoading::run's rule with `fraction` for 0.5) and
-    True, or its last sample and False where the rule never fires."""
+def run_control(run_folder):
+    """The run's own maxTravel, minTravel, travelAfterHalfLoad and sampleInterval (m)."""
+    path = os.path.join(run_folder, "system", "controlDict")
+    control = {}
+    for key in ("maxTravel", *CONTROL_DEFAULTS):
+        try:
+            control[key] = float(iceCases.get_entry(path, key).split()[0])
+        except KeyError:
+            if key not in CONTROL_DEFAULTS:
+                raise
+            control[key] = CONTROL_DEFAULTS[key]
+    return control
+
+
+def stop_index(c, control, fraction):
+    """The sample a run would stop at (PlatenLoading::run's rule with `fraction` for 0.5, the run's
+    own controlDict entries) and True, or its last sample and False where the rule never fires."""
     peak, below_since = 0.0, None
     for i, (travel, force) in enumerate(zip(c["travel"], c["force"])):
         peak = max(peak, force)
@@ -57,7 +72,8 @@ def stop_index(c, fraction):
             below_since = None
         elif below_since is None:
             below_since = travel
-        if below_since is not None and travel > below_since + TRAVEL_AFTER and travel >= MIN_TRAVEL:
+        if (below_since is not None and travel > below_since + control["travelAfterHalfLoad"]
+                and travel >= control["minTravel"]):
             return i, True
     return len(c["force"]) - 1, False
 
@@ -66,10 +82,10 @@ def short_name(name):
     return name.split("_keel")[0]
 
 
-def early_stop_table(curves, fractions):
+def early_stop_table(curves, controls, fractions):
     # A run stopped by the rule ends on the sample it fired at; one that ran to maxTravel never fired.
-    mismatched = [name for name, c in curves.items()
-                  if stop_index(c, 0.5) != (len(c["force"]) - 1, c["travel"][-1] < MAX_TRAVEL - 1e-4)]
+    mismatched = [name for name, c in curves.items() if stop_index(c, controls[name], 0.5)
+                  != (len(c["force"]) - 1, c["travel"][-1] < controls[name]["maxTravel"] - 1e-4)]
     if mismatched:
         sys.exit("forceCurves.py: the replayed rule at 0.5 does not give back the runs' own stop: " + ", ".join(mismatched))
     rows = []
@@ -77,12 +93,12 @@ def early_stop_table(curves, fractions):
         kept = total = 0.0
         early, breaks_kept, breaks_all = [], 0, 0
         for name, c in curves.items():
-            i, _ = stop_index(c, fraction)
+            i, _ = stop_index(c, controls[name], fraction)
             kept += c["time"][i] - c["time"][0]
             total += c["time"][-1] - c["time"][0]
-            peak_kept = max(c["force"][: i + 1])
-            if peak_kept < max(c["force"]):
-                early.append(f"{short_name(name)} {peak_kept / max(c['force']) - 1:+.1%}")
+            peak, peak_kept = max(c["force"]), max(c["force"][: i + 1])
+            if peak_kept < peak:
+                early.append(f"{short_name(name)} {peak_kept / peak - 1:+.1%}")
             breaks_kept += c["brokenBonds"][i]
             breaks_all += c["brokenBonds"][-1]
         rows.append({"fraction_of_peak": fraction, "runs": len(curves), "loading_time_kept": round(kept / total, 3),
@@ -96,13 +112,13 @@ def early_stop_table(curves, fractions):
     return rows, "\n".join(md) + "\n"
 
 
-def running_mean_peak(curve, window):
+def running_mean_peak(curve, window, sample_travel):
     """The largest mean over `window` samples (odd): supportStudy's mean over +- half a window of
-    travel, the half-width half a sample past the outermost sample's 0.2 mm steps."""
-    return supportStudy.smoothed_peak(curve, half=(window // 2 + 0.5) * SAMPLE_TRAVEL)
+    travel, the half-width half a sample past the outermost sample."""
+    return supportStudy.smoothed_peak(curve, half=(window // 2 + 0.5) * sample_travel)
 
 
-def spike_table(curves):
+def spike_table(curves, controls):
     rows = []
     for name, c in curves.items():
         f = c["force"]
@@ -113,11 +129,13 @@ def spike_table(curves):
                "neighbours_of_peak": " / ".join(f"{n:.2f}" for n in neighbours),
                "kinetic_at_peak_over_median": round(c["kineticEnergy"][i] / kinetic[len(kinetic) // 2], 1)}
         for w in WINDOWS:
-            row[f"running_mean_{w}_kN"] = round(running_mean_peak(c, w) * 1e-3, 3)
+            row[f"running_mean_{w}_kN"] = round(running_mean_peak(c, w, controls[name]["sampleInterval"]) * 1e-3, 3)
         row["spike"] = "yes" if all(n < SPIKE for n in neighbours) else "no"
         rows.append(row)
+    sample_mm = sorted({control["sampleInterval"] * 1e3 for control in controls.values()})
     md = ["| run | largest force [kN] at [mm] | its neighbours (of it) | kinetic energy there / run's median | "
-          + " | ".join(f"largest mean of {w} samples ({w * 0.2:.1f} mm) [kN]" for w in WINDOWS) + " | spike |",
+          + " | ".join(f"largest mean of {w} samples ({' or '.join(f'{w * mm:.1f}' for mm in sample_mm)} mm) [kN]"
+                       for w in WINDOWS) + " | spike |",
           "|---|---|---|---|" + "---|" * len(WINDOWS) + "---|"]
     md += [f"| {r['run']} | {r['peak_kN']} at {r['travel_at_peak_mm']} | {r['neighbours_of_peak']} | "
            f"{r['kinetic_at_peak_over_median']} | " + " | ".join(str(r[f'running_mean_{w}_kN']) for w in WINDOWS)
@@ -126,9 +144,11 @@ def spike_table(curves):
 
 
 def csv_text(rows):
-    header = list(rows[0])
-    quoted = [[f'"{r[k]}"' if isinstance(r[k], str) else str(r[k]) for k in header] for r in rows]
-    return ",".join(header) + "\n" + "".join(",".join(q) + "\n" for q in quoted)
+    text = io.StringIO()
+    writer = csv.DictWriter(text, list(rows[0]), quoting=csv.QUOTE_NONNUMERIC, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return text.getvalue()
 
 
 def main():
@@ -153,7 +173,9 @@ def main():
     if not folders:
         sys.exit(f"forceCurves.py: no finished run in {runs} or {alone}")
     curves = {os.path.basename(f): iceCases.curve(f) for f in folders}
-    outputs = {"earlyStop": early_stop_table(curves, args.fractions), "forceSpikes": spike_table(curves)}
+    controls = {os.path.basename(f): run_control(f) for f in folders}
+    outputs = {"earlyStop": early_stop_table(curves, controls, args.fractions),
+               "forceSpikes": spike_table(curves, controls)}
     folder = os.path.join(case, "results") if args.publish else os.path.join(
         case, "runs", "forceCurves" + ("-speed%g" % args.speed if args.speed else ""))
     os.makedirs(folder, exist_ok=True)
